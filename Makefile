@@ -1,0 +1,33 @@
+# The two commands of README.md: `make run` and `make test`. Both set up what they need.
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.sward-installed
+
+.PHONY: run test lint bench setup system-deps clean
+
+$(STAMP): pyproject.toml
+	@bash scripts/python-env.sh $(VENV)
+	@touch $(STAMP)
+
+setup: $(STAMP)
+
+system-deps:
+	@bash scripts/system-deps.sh
+
+run: system-deps $(STAMP)
+	$(VENV)/bin/sward
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/ruff format --check .
+	$(VENV)/bin/lint-imports
+
+test: system-deps lint
+	$(VENV)/bin/sward info
+	QT_QPA_PLATFORM=xcb $(PY) -m pytest
+
+bench: $(STAMP)
+	$(VENV)/bin/sward bench --out benchmarks/results.json
+
+clean:
+	rm -rf $(VENV) .pytest_cache .ruff_cache

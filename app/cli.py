@@ -1,0 +1,193 @@
+"""The `sward` command line (the contract in DESIGN.md)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+from app.scenes import DEFAULT_SCENE, SCENES, get_scene
+
+
+class CliError(Exception):
+    """Bad input from the command line: printed as one line, exit status 2."""
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"malformed size {text!r}; expected WxH, e.g. 1024x768") from None
+    if not (1 <= w <= 8192 and 1 <= h <= 8192):
+        raise argparse.ArgumentTypeError(f"size {text!r} out of range; each side 1 … 8192")
+    return w, h
+
+
+def _vec3(text: str) -> tuple[float, float, float]:
+    try:
+        x, y, z = (float(v) for v in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"malformed point {text!r}; expected X,Y,Z") from None
+    return x, y, z
+
+
+def _writable(path: Path) -> Path:
+    parent = path.resolve().parent
+    if not parent.is_dir():
+        raise CliError(f"cannot write {path}: folder {parent} does not exist")
+    if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise CliError(f"cannot write {path}: permission denied")
+    return path
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="sward", description="Design real-time grass.")
+    sub = p.add_subparsers(dest="command")
+
+    r = sub.add_parser("render", help="render one frame headless to a PNG")
+    r.add_argument("--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})")
+    r.add_argument("--camera", help="named camera of the scene")
+    r.add_argument("--eye", type=_vec3, help="camera position X,Y,Z (with --target)")
+    r.add_argument("--target", type=_vec3, help="point the camera looks at X,Y,Z")
+    r.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
+    r.add_argument("--preset", help="blade preset instead of the scene's patch")
+    r.add_argument("--density", type=float, help="global density 0 … 1")
+    r.add_argument("--seed", type=int, help="random seed of the patch")
+    r.add_argument("--out", type=Path, help="PNG file to write")
+    r.add_argument("--stats", type=Path, help="JSON file for the frame statistics")
+
+    sub.add_parser("scenes", help="list built-in scenes and their cameras")
+    sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
+    b = sub.add_parser("bench", help="run the benchmarks and write JSON")
+    b.add_argument("--suite", action="append", help="benchmark suite (default: all)")
+    b.add_argument("--out", type=Path, help="JSON file for the results")
+    return p
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    from app.headless import HeadlessRenderer
+    from core.params import PRESETS, ParameterError
+
+    try:
+        scene = get_scene(args.scene)
+    except KeyError as exc:
+        raise CliError(exc.args[0]) from None
+    if (args.eye is None) != (args.target is None):
+        raise CliError("--eye and --target go together")
+    if args.out is None and args.stats is None:
+        raise CliError("nothing to write: give --out PNG and/or --stats JSON")
+    for path in (args.out, args.stats):
+        if path is not None:
+            _writable(path)
+    if args.density is not None and not 0.0 <= args.density <= 1.0:
+        raise CliError(f"--density {args.density:g} out of range; allowed 0 … 1")
+
+    params = scene.params
+    if args.preset is not None:
+        if args.preset not in PRESETS:
+            raise CliError(f"unknown preset {args.preset!r}; presets: {', '.join(PRESETS)}")
+        params = PRESETS[args.preset]
+    try:
+        if args.seed is not None:
+            params = params.replace(seed=args.seed)
+    except ParameterError as exc:
+        raise CliError(f"--seed: {exc}") from None
+
+    if args.eye is not None:
+        try:
+            from core.camera import Camera
+            camera = Camera.from_eye_target(args.eye, args.target)
+        except ValueError as exc:
+            raise CliError(f"--eye/--target: {exc}") from None
+        camera_name = "custom"
+    else:
+        camera_name = args.camera or scene.default_camera
+        if camera_name not in scene.cameras:
+            raise CliError(f"unknown camera {camera_name!r} for scene {scene.name}; "
+                           f"cameras: {', '.join(scene.cameras)}")
+        camera = scene.camera(camera_name)
+
+    renderer = HeadlessRenderer()
+    renderer.load(scene, params, density=args.density)
+    image, stats = renderer.render(camera, args.size, measure=True)
+    renderer.release()
+
+    if args.out is not None:
+        from PIL import Image
+        try:
+            Image.fromarray(image).save(args.out, format="PNG")
+        except OSError as exc:
+            raise CliError(f"cannot write {args.out}: {exc.strerror or exc}") from None
+        print(f"wrote {args.out} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
+    if args.stats is not None:
+        data = {**stats.to_dict(), "scene": scene.name, "camera": camera_name}
+        try:
+            args.stats.write_text(json.dumps(data, indent=2) + "\n")
+        except OSError as exc:
+            raise CliError(f"cannot write {args.stats}: {exc.strerror or exc}") from None
+    return 0
+
+
+def cmd_scenes(_: argparse.Namespace) -> int:
+    for scene in SCENES.values():
+        print(f"{scene.name:12s} {scene.description}")
+        print(f"{'':12s} cameras: {', '.join(scene.cameras)} (default {scene.default_camera})")
+    return 0
+
+
+def cmd_info(_: argparse.Namespace) -> int:
+    from render import context
+
+    ctx = context.standalone()
+    print(f"OpenGL: {context.describe(ctx)}")
+    ctx.release()
+    return 0
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    from app import bench
+
+    return bench.run(args.suite, args.out)
+
+
+def cmd_gui(_: argparse.Namespace) -> int:
+    if sys.platform.startswith("linux") and not (
+        os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+    ):
+        print(
+            "sward: no display found (DISPLAY is not set), so the designer cannot open.\n"
+            "Render headless instead, e.g.:\n"
+            f"  sward render --scene {DEFAULT_SCENE} --out grass.png --stats stats.json",
+            file=sys.stderr,
+        )
+        return 1
+    from app.designer import run_designer
+
+    return run_designer()
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    handler = {
+        None: cmd_gui, "render": cmd_render, "scenes": cmd_scenes, "info": cmd_info,
+        "bench": cmd_bench,
+    }[args.command]
+    name = f"sward {args.command}" if args.command else "sward"
+    try:
+        return handler(args)
+    except CliError as exc:
+        print(f"{name}: error: {exc}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # GL or environment failures: one line, no traceback
+        from render.context import GLUnavailableError
+
+        if isinstance(exc, GLUnavailableError):
+            print(f"{name}: error: {exc}", file=sys.stderr)
+            return 3
+        raise
+
+
+if __name__ == "__main__":
+    sys.exit(main())

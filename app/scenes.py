@@ -1,0 +1,66 @@
+"""Built-in scenes: a patch, a grid of cells and named cameras."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from core.camera import Camera
+from core.grid import grid_instances
+from core.params import DEFAULT_PRESET, PRESETS, PatchParams
+
+
+@dataclass(frozen=True)
+class CameraSpec:
+    eye: tuple[float, float, float]
+    target: tuple[float, float, float]
+
+    def camera(self) -> Camera:
+        return Camera.from_eye_target(self.eye, self.target)
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    description: str
+    params: PatchParams
+    grid: tuple[int, int]
+    density: float = 1.0
+    cameras: dict[str, CameraSpec] = field(default_factory=dict)
+    default_camera: str = "default"
+
+    def instances(self) -> np.ndarray:
+        return grid_instances(*self.grid)
+
+    def camera(self, name: str | None = None) -> Camera:
+        name = name or self.default_camera
+        if name not in self.cameras:
+            raise KeyError(name)
+        return self.cameras[name].camera()
+
+
+SCENES: dict[str, Scene] = {
+    "patch-grid": Scene(
+        name="patch-grid",
+        description="the current patch tiled over an 8 × 8 grid of flat cells",
+        params=PRESETS[DEFAULT_PRESET],
+        grid=(8, 8),
+        cameras={
+            "default": CameraSpec((4.6, 2.4, 5.4), (0.0, 0.0, 0.0)),
+            "close": CameraSpec((1.2, 0.55, 1.6), (0.0, 0.1, 0.0)),
+            "top": CameraSpec((0.0, 9.0, 0.01), (0.0, 0.0, 0.0)),
+            "grazing": CameraSpec((0.0, 0.35, 4.6), (0.0, 0.1, -2.0)),
+        },
+    ),
+}
+DEFAULT_SCENE = "patch-grid"
+
+
+def get_scene(name: str) -> Scene:
+    try:
+        return SCENES[name]
+    except KeyError:
+        raise KeyError(
+            f"unknown scene {name!r}; built-in scenes: {', '.join(sorted(SCENES))}"
+        ) from None

@@ -1,0 +1,111 @@
+"""Camera maths: view and projection matrices, and an orbit / fly camera model.
+
+Matrices are numpy float32 4×4 in the usual column-vector convention (clip = P · V · world);
+upload them to GL transposed (row-major bytes → GLSL column-major) with `gl_bytes`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+def look_at(eye, target, up=(0.0, 1.0, 0.0)) -> np.ndarray:
+    eye = np.asarray(eye, dtype=np.float64)
+    target = np.asarray(target, dtype=np.float64)
+    f = target - eye
+    n = np.linalg.norm(f)
+    if n < 1e-12:
+        raise ValueError("camera eye and target are the same point")
+    f /= n
+    up = np.asarray(up, dtype=np.float64)
+    if abs(float(np.dot(f, up))) > 0.9999:  # looking straight up or down
+        up = np.array([0.0, 0.0, -1.0])
+    s = np.cross(f, up)
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.identity(4)
+    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[:3, 3] = -m[:3, :3] @ eye
+    return m.astype(np.float32)
+
+
+def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> np.ndarray:
+    f = 1.0 / np.tan(np.radians(fov_y_deg) / 2.0)
+    m = np.zeros((4, 4))
+    m[0, 0] = f / aspect
+    m[1, 1] = f
+    m[2, 2] = (far + near) / (near - far)
+    m[2, 3] = 2.0 * far * near / (near - far)
+    m[3, 2] = -1.0
+    return m.astype(np.float32)
+
+
+def gl_bytes(m: np.ndarray) -> bytes:
+    """Bytes of a 4×4 matrix in the column-major order GLSL expects."""
+    return np.ascontiguousarray(m.T, dtype=np.float32).tobytes()
+
+
+@dataclass
+class Camera:
+    """An orbit camera around a target; fly mode moves eye and target together.
+
+    yaw turns about +y (0 looks along -z), pitch is the elevation of the eye above the target
+    in degrees, distance the eye-target distance in world units (one patch cell = 1).
+    """
+
+    target: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    yaw: float = 30.0
+    pitch: float = 25.0
+    distance: float = 8.0
+    fov_y: float = 50.0
+    near: float = 0.02
+    far: float = 500.0
+
+    @classmethod
+    def from_eye_target(cls, eye, target, **kw) -> Camera:
+        eye = np.asarray(eye, dtype=np.float64)
+        target = np.asarray(target, dtype=np.float64)
+        d = eye - target
+        dist = float(np.linalg.norm(d))
+        if dist < 1e-9:
+            raise ValueError("camera eye and target are the same point")
+        pitch = float(np.degrees(np.arcsin(np.clip(d[1] / dist, -1, 1))))
+        yaw = float(np.degrees(np.arctan2(d[0], d[2])))
+        return cls(target=tuple(float(x) for x in target), yaw=yaw, pitch=pitch,
+                   distance=dist, **kw)
+
+    @property
+    def eye(self) -> np.ndarray:
+        yaw, pitch = np.radians(self.yaw), np.radians(self.pitch)
+        offset = np.array([np.sin(yaw) * np.cos(pitch), np.sin(pitch), np.cos(yaw) * np.cos(pitch)])
+        return np.asarray(self.target) + self.distance * offset
+
+    def view(self) -> np.ndarray:
+        return look_at(self.eye, self.target)
+
+    def projection(self, aspect: float) -> np.ndarray:
+        return perspective(self.fov_y, aspect, self.near, self.far)
+
+    def orbit(self, d_yaw: float, d_pitch: float) -> None:
+        self.yaw = (self.yaw + d_yaw) % 360.0
+        self.pitch = float(np.clip(self.pitch + d_pitch, -5.0, 89.0))
+
+    def zoom(self, factor: float) -> None:
+        self.distance = float(np.clip(self.distance * factor, 0.05, 400.0))
+
+    def pan(self, dx: float, dy: float) -> None:
+        """Move the target in the view plane by fractions of the distance."""
+        v = self.view()
+        right, up = v[0, :3].astype(np.float64), v[1, :3].astype(np.float64)
+        shift = (right * dx + up * dy) * self.distance
+        self.target = tuple(float(x) for x in np.asarray(self.target) + shift)
+
+    def fly(self, forward: float, strafe: float, rise: float = 0.0) -> None:
+        """Move eye and target together along the horizontal view direction (WASD)."""
+        yaw = np.radians(self.yaw)
+        ahead = -np.array([np.sin(yaw), 0.0, np.cos(yaw)])
+        right = np.array([np.cos(yaw), 0.0, -np.sin(yaw)])
+        shift = ahead * forward + right * strafe + np.array([0.0, rise, 0.0])
+        self.target = tuple(float(x) for x in np.asarray(self.target) + shift)

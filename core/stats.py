@@ -1,0 +1,34 @@
+"""Per-frame statistics (thesis ch. 7): times in ms and instance counts per technique."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+
+@dataclass
+class FrameStats:
+    """t_a whole frame; t_q LOD selection on the CPU; t_g / t_v / t_i geometry, volume and
+    image-based grass; t_m the rest of the scenery (ground, props). c_* are instance counts."""
+
+    t_a_ms: float = 0.0
+    t_q_ms: float = 0.0
+    t_g_ms: float = 0.0
+    t_v_ms: float = 0.0
+    t_i_ms: float = 0.0
+    t_m_ms: float = 0.0
+    c_g: int = 0
+    c_v: int = 0
+    c_i: int = 0
+    blades: int = 0
+    triangles: int = 0
+    width: int = 0
+    height: int = 0
+
+    @property
+    def fps(self) -> float:
+        return 1000.0 / self.t_a_ms if self.t_a_ms > 0 else 0.0
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d["fps"] = round(self.fps, 2)
+        return d

@@ -1,0 +1,34 @@
+"""The one place that makes GL contexts.
+
+Renderers receive a moderngl context and never create one: the viewport wraps Qt's current
+context (`wrap_current`), the command line, tests and benchmarks use `standalone`.
+"""
+
+from __future__ import annotations
+
+import moderngl
+
+
+class GLUnavailableError(RuntimeError):
+    """No OpenGL 3.3 context could be created."""
+
+
+def standalone() -> moderngl.Context:
+    """A headless GL 3.3+ context through EGL (Mesa llvmpipe on a machine with no GPU)."""
+    try:
+        return moderngl.create_standalone_context(backend="egl", require=330)
+    except Exception as exc:  # moderngl raises plain Exceptions from glcontext
+        raise GLUnavailableError(
+            f"could not create a headless OpenGL 3.3 context through EGL ({exc}); "
+            "on Debian install libegl1 libegl-mesa0 libgl1-mesa-dri"
+        ) from exc
+
+
+def wrap_current() -> moderngl.Context:
+    """The GL context current on this thread (e.g. a QOpenGLWidget's in initializeGL)."""
+    return moderngl.create_context(require=330)
+
+
+def describe(ctx: moderngl.Context) -> str:
+    info = ctx.info
+    return f"{info['GL_RENDERER']} / {info['GL_VERSION']} (max samples {ctx.max_samples})"

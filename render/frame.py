@@ -1,0 +1,121 @@
+"""The frame pipeline: ground, then each renderer's prepare / draw / finalize, into a 4× MSAA
+framebuffer that is resolved into the caller's framebuffer.
+
+With `measure=True` every pass is bracketed by ctx.finish() so its wall time is the GPU's time
+for that technique (GL timer queries are not exact on llvmpipe); without it the frame is only
+timed as a whole.
+"""
+
+from __future__ import annotations
+
+import time
+
+import moderngl
+import numpy as np
+
+from core.camera import Camera
+from core.grid import INSTANCE_DTYPE
+from core.lighting import Lighting
+from core.patch import GrassPatch
+from core.stats import FrameStats
+from render.geometry import GeometryRenderer
+from render.ground import GroundRenderer
+from render.uniforms import FrameUniforms
+
+
+class FramePipeline:
+    def __init__(self, ctx: moderngl.Context, samples: int = 4) -> None:
+        self.ctx = ctx
+        self.samples = max(0, min(samples, ctx.max_samples))
+        self.geometry = GeometryRenderer(ctx)
+        self.ground = GroundRenderer(ctx)
+        self.lighting = Lighting()
+        self._msaa: moderngl.Framebuffer | None = None
+        self._size = (0, 0)
+
+    # -- scene state -------------------------------------------------------------------------
+    def set_patch(self, patch: GrassPatch) -> None:
+        self.geometry.set_patch(patch)
+
+    def set_instances(self, instances: np.ndarray) -> None:
+        if instances.dtype != INSTANCE_DTYPE:
+            raise TypeError("instances must be an INSTANCE_DTYPE array")
+        self.geometry.set_instances(instances)
+        if instances.size:
+            o = instances["origin"]
+            self.ground.grass_rect = (float(o[:, 0].min()), float(o[:, 1].min()),
+                                      float(o[:, 0].max() + 1), float(o[:, 1].max() + 1))
+
+    def set_density(self, density: float) -> None:
+        self.geometry.density = float(density)
+
+    # -- drawing -----------------------------------------------------------------------------
+    def _target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
+        if self._msaa is None or self._size != size:
+            if self._msaa is not None:
+                for att in (*self._msaa.color_attachments, self._msaa.depth_attachment):
+                    att.release()
+                self._msaa.release()
+            color = self.ctx.renderbuffer(size, 4, samples=self.samples)
+            depth = self.ctx.depth_renderbuffer(size, samples=self.samples)
+            self._msaa = self.ctx.framebuffer(color, depth)
+            self._size = size
+        return self._msaa
+
+    def render(
+        self, camera: Camera, out: moderngl.Framebuffer, size: tuple[int, int], measure: bool = False
+    ) -> FrameStats:
+        """Draw one frame into `out` (size w × h) and return its statistics."""
+        ctx = self.ctx
+        w, h = size
+        stats = FrameStats(width=w, height=h)
+        patch = self.geometry.patch
+        if patch is not None:
+            stats.c_g = self.geometry.instance_count
+            visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
+            stats.blades = visible * stats.c_g
+            stats.triangles = stats.blades * patch.params.subdivisions * 2
+
+        t0 = time.perf_counter()
+        tq = time.perf_counter()
+        frame = FrameUniforms(
+            view_proj=camera.projection(w / max(h, 1)) @ camera.view(),
+            eye=camera.eye,
+            lighting=self.lighting,
+        )
+        stats.t_q_ms = (time.perf_counter() - tq) * 1000.0
+
+        fbo = self._target(size)
+        fbo.use()
+        ctx.viewport = (0, 0, w, h)
+        sky = self.lighting.sky_color
+        fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
+
+        def timed(fn) -> float:
+            if measure:
+                ctx.finish()
+            start = time.perf_counter()
+            fn()
+            if measure:
+                ctx.finish()
+            return (time.perf_counter() - start) * 1000.0
+
+        stats.t_m_ms = timed(lambda: self.ground.draw(frame))
+
+        def geometry() -> None:
+            self.geometry.prepare(frame)
+            self.geometry.draw()
+            self.geometry.finalize()
+
+        stats.t_g_ms = timed(geometry)
+        ctx.copy_framebuffer(out, fbo)
+        if measure:
+            ctx.finish()
+        stats.t_a_ms = (time.perf_counter() - t0) * 1000.0
+        return stats
+
+    def release(self) -> None:
+        self.geometry.release()
+        self.ground.release()
+        if self._msaa is not None:
+            self._msaa.release()

@@ -1,0 +1,81 @@
+"""Shader programs loaded by name from shaders/NAME.glsl.
+
+One file holds one program: `#version` on line 1 and the stages behind
+`#if defined VERTEX_SHADER` / `#elif defined FRAGMENT_SHADER`. `#include "file.glsl"` pulls in a
+shared snippet. The loader injects the stage define and `#line` directives so compile errors
+point at the right line, and names the file when a program fails to build.
+"""
+
+from __future__ import annotations
+
+import re
+from importlib import resources
+
+import moderngl
+
+_INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$')
+
+
+class ShaderError(RuntimeError):
+    """A shader file that is missing or does not compile."""
+
+
+def shader_source(name: str) -> str:
+    try:
+        return resources.files("shaders").joinpath(name).read_text()
+    except FileNotFoundError as exc:
+        raise ShaderError(f"shader file shaders/{name} not found") from exc
+
+
+def _expand(name: str, seen: tuple[str, ...] = ()) -> list[str]:
+    if name in seen:
+        raise ShaderError(f"shaders/{name}: circular #include")
+    out: list[str] = []
+    for number, line in enumerate(shader_source(name).splitlines(), start=1):
+        m = _INCLUDE.match(line)
+        if m:
+            out.extend(_expand(m.group(1), (*seen, name)))
+            out.append(f"#line {number + 1}")
+        else:
+            out.append(line)
+    return out
+
+
+def stage_source(name: str, stage: str) -> str:
+    lines = _expand(name)
+    if not lines or not lines[0].startswith("#version"):
+        raise ShaderError(f"shaders/{name}: line 1 must be the #version directive")
+    return "\n".join([lines[0], f"#define {stage}", "#line 2", *lines[1:]]) + "\n"
+
+
+def program_names() -> list[str]:
+    """Every program file in shaders/ (snippets for #include start with an underscore)."""
+    files = resources.files("shaders").iterdir()
+    return sorted(f.name for f in files if f.name.endswith(".glsl") and not f.name.startswith("_"))
+
+
+_cache: dict[tuple[int, str], moderngl.Program] = {}
+
+
+def load_program(ctx: moderngl.Context, name: str) -> moderngl.Program:
+    """The compiled program in shaders/NAME, cached per context."""
+    key = (id(ctx), name)
+    if key in _cache:
+        return _cache[key]
+    try:
+        program = ctx.program(
+            vertex_shader=stage_source(name, "VERTEX_SHADER"),
+            fragment_shader=stage_source(name, "FRAGMENT_SHADER"),
+        )
+    except ShaderError:
+        raise
+    except Exception as exc:
+        raise ShaderError(f"shaders/{name} failed to build:\n{exc}") from exc
+    _cache[key] = program
+    return program
+
+
+def forget_context(ctx: moderngl.Context) -> None:
+    """Drop the cached programs of a context that is going away."""
+    for key in [k for k in _cache if k[0] == id(ctx)]:
+        del _cache[key]

@@ -1,0 +1,35 @@
+"""Per-frame uniforms shared by every program: camera and light."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import moderngl
+import numpy as np
+
+from core.camera import gl_bytes
+from core.lighting import Lighting
+
+
+@dataclass
+class FrameUniforms:
+    view_proj: np.ndarray
+    eye: np.ndarray
+    lighting: Lighting
+
+    def apply(self, program: moderngl.Program) -> None:
+        values = {
+            "u_view_proj": gl_bytes(self.view_proj),
+            "u_eye": tuple(float(x) for x in self.eye),
+            "u_light_dir": tuple(float(x) for x in self.lighting.sun_direction),
+            "u_light_color": self.lighting.sun_color,
+            "u_ambient_color": self.lighting.ambient_color,
+            "u_translucency": self.lighting.translucency,
+        }
+        for name, value in values.items():
+            if name not in program:
+                continue
+            if isinstance(value, bytes):
+                program[name].write(value)
+            else:
+                program[name].value = value

@@ -1,0 +1,41 @@
+#version 330 core
+// The ground under the grass: one large quad at y = 0, lit like the grass, darker where the
+// grid of patches stands (the grass shades its own soil), fading into the sky far away.
+#include "_lighting.glsl"
+
+#if defined VERTEX_SHADER
+
+uniform mat4 u_view_proj;
+uniform float u_extent;
+
+in vec2 in_corner;
+out vec3 v_world;
+
+void main() {
+    v_world = vec3(in_corner.x * u_extent, 0.0, in_corner.y * u_extent);
+    gl_Position = u_view_proj * vec4(v_world, 1.0);
+}
+
+#elif defined FRAGMENT_SHADER
+
+uniform vec3 u_soil_color;
+uniform vec3 u_eye;
+uniform vec3 u_fog_color;
+uniform float u_fog_distance;
+uniform vec4 u_grass_rect;    // xmin, zmin, xmax, zmax of the grassed cells
+uniform vec3 u_under_grass;   // soil colour under the grass
+
+in vec3 v_world;
+out vec4 f_color;
+
+void main() {
+    vec2 p = v_world.xz;
+    float inside = step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
+                 * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w);
+    vec3 albedo = mix(u_soil_color, u_under_grass, inside);
+    vec3 color = shade(albedo, vec3(0.0, 1.0, 0.0), mix(1.0, 0.6, inside));
+    float fog = 1.0 - exp(-distance(u_eye, v_world) / u_fog_distance);
+    f_color = vec4(mix(color, u_fog_color, clamp(fog, 0.0, 1.0)), 1.0);
+}
+
+#endif
