@@ -1,0 +1,195 @@
+"""The designer window: viewport, blade panel, undo, background patch generation."""
+
+from __future__ import annotations
+
+import sys
+
+from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
+from PySide6.QtGui import QAction, QKeySequence, QUndoCommand, QUndoStack
+from PySide6.QtWidgets import QApplication, QDockWidget, QFileDialog, QLabel, QMainWindow
+
+from app.scenes import DEFAULT_SCENE, Scene, get_scene
+from core.design import PatchDesign
+from core.params import PatchParams
+from core.patch import GrassPatch, generate_patch
+from widgets.patch_panel import PatchPanel
+from widgets.viewport import GrassViewport
+
+
+class _Done(QObject):
+    finished = Signal(int, object)  # request id, GrassPatch
+
+
+class _Generate(QRunnable):
+    def __init__(self, request: int, params: PatchParams, done: _Done) -> None:
+        super().__init__()
+        self.request, self.params, self.done = request, params, done
+
+    def run(self) -> None:
+        self.done.finished.emit(self.request, generate_patch(self.params))
+
+
+class PatchBuilder(QObject):
+    """Generates patches off the GUI thread; only the newest request is delivered."""
+
+    ready = Signal(object)  # GrassPatch
+    busy = Signal(bool)
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.pool = QThreadPool(self)
+        self.pool.setMaxThreadCount(1)
+        self._done = _Done()
+        self._done.finished.connect(self._on_finished, Qt.ConnectionType.QueuedConnection)
+        self._latest = 0
+
+    def request(self, params: PatchParams) -> None:
+        self._latest += 1
+        self.busy.emit(True)
+        self.pool.start(_Generate(self._latest, params, self._done))
+
+    def _on_finished(self, request: int, patch: GrassPatch) -> None:
+        if request == self._latest:
+            self.busy.emit(False)
+            self.ready.emit(patch)
+
+    def wait(self) -> None:
+        self.pool.waitForDone()
+
+
+class SetParams(QUndoCommand):
+    def __init__(self, design: PatchDesign, old: PatchParams, new: PatchParams) -> None:
+        super().__init__("change blades")
+        self.design, self.old, self.new = design, old, new
+
+    def redo(self) -> None:
+        self.design.params = self.new
+
+    def undo(self) -> None:
+        self.design.params = self.old
+
+
+class SetDensity(QUndoCommand):
+    ID = 1
+
+    def __init__(self, design: PatchDesign, old: float, new: float) -> None:
+        super().__init__("change density")
+        self.design, self.old, self.new = design, old, new
+
+    def id(self) -> int:
+        return self.ID
+
+    def mergeWith(self, other) -> bool:  # a slider drag is one undo step
+        self.new = other.new
+        return True
+
+    def redo(self) -> None:
+        self.design.density = self.new
+
+    def undo(self) -> None:
+        self.design.density = self.old
+
+
+class DesignerWindow(QMainWindow):
+    def __init__(self, scene: Scene) -> None:
+        super().__init__()
+        self.scene = scene
+        self.setWindowTitle(f"Sward — {scene.name}")
+        self.design = PatchDesign(scene.params, scene.density)
+        self.undo_stack = QUndoStack(self)
+        self.builder = PatchBuilder(self)
+        self.patch: GrassPatch | None = None
+
+        self.viewport = GrassViewport(scene.camera())
+        self.viewport.set_instances(scene.instances())
+        self.viewport.set_density(self.design.density)
+        self.setCentralWidget(self.viewport)
+
+        self.panel = PatchPanel(self.design)
+        dock = QDockWidget("Patch", self)
+        dock.setObjectName("patch-dock")
+        dock.setWidget(self.panel)
+        dock.setMinimumWidth(330)
+        self.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, dock)
+
+        self.status = QLabel("generating patch …")
+        self.statusBar().addPermanentWidget(self.status, 1)
+
+        self.panel.params_edited.connect(self._push_params)
+        self.panel.density_edited.connect(self._push_density)
+        self.design.params_changed.connect(self.builder.request)
+        self.design.density_changed.connect(self.viewport.set_density)
+        self.builder.ready.connect(self._on_patch_ready)
+        self.builder.busy.connect(self._on_busy)
+        self.viewport.frame_rendered.connect(self._on_frame)
+        self._build_menus(dock)
+        self.resize(1200, 760)
+        self.builder.request(self.design.params)
+
+    def _build_menus(self, dock: QDockWidget) -> None:
+        file_menu = self.menuBar().addMenu("&File")
+        save = QAction("Save &image…", self, shortcut=QKeySequence("Ctrl+S"))
+        save.triggered.connect(self._save_image)
+        quit_ = QAction("&Quit", self, shortcut=QKeySequence.StandardKey.Quit)
+        quit_.triggered.connect(self.close)
+        file_menu.addActions([save, quit_])
+        edit = self.menuBar().addMenu("&Edit")
+        undo = self.undo_stack.createUndoAction(self, "&Undo")
+        undo.setShortcut(QKeySequence.StandardKey.Undo)
+        redo = self.undo_stack.createRedoAction(self, "&Redo")
+        redo.setShortcut(QKeySequence.StandardKey.Redo)
+        edit.addActions([undo, redo])
+        view = self.menuBar().addMenu("&View")
+        reset = QAction("&Reset camera", self, shortcut=QKeySequence("Home"))
+        reset.triggered.connect(lambda: self.viewport.set_camera(self.scene.camera()))
+        view.addAction(reset)
+        for name in self.scene.cameras:
+            act = QAction(f"Camera: {name}", self)
+            act.triggered.connect(lambda _=False, n=name: self.viewport.set_camera(self.scene.camera(n)))
+            view.addAction(act)
+        view.addSeparator()
+        view.addAction(dock.toggleViewAction())
+
+    # -- edits become undoable commands ------------------------------------------------------
+    def _push_params(self, params: PatchParams) -> None:
+        if params != self.design.params:
+            self.undo_stack.push(SetParams(self.design, self.design.params, params))
+
+    def _push_density(self, density: float) -> None:
+        if density != self.design.density:
+            self.undo_stack.push(SetDensity(self.design, self.design.density, density))
+
+    # -- results -----------------------------------------------------------------------------
+    def _on_patch_ready(self, patch: GrassPatch) -> None:
+        self.patch = patch
+        self.viewport.set_patch(patch)
+
+    def _on_busy(self, busy: bool) -> None:
+        if busy:
+            self.status.setText("generating patch …")
+
+    def _on_frame(self, stats) -> None:
+        self.status.setText(
+            f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
+            f"{stats.c_g} cells · frame {stats.t_a_ms:.1f} ms (grass {stats.t_g_ms:.1f} ms)"
+            + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
+        )
+
+    def _save_image(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save image", "grass.png", "PNG (*.png)")
+        if path:
+            if not self.viewport.grabFramebuffer().save(path, "PNG"):
+                self.statusBar().showMessage(f"could not write {path}", 5000)
+
+    def closeEvent(self, event) -> None:
+        self.builder.wait()
+        self.viewport.release_gl()
+        super().closeEvent(event)
+
+
+def run_designer(scene_name: str = DEFAULT_SCENE) -> int:
+    QApplication.setApplicationName("Sward")
+    app = QApplication.instance() or QApplication(sys.argv)
+    window = DesignerWindow(get_scene(scene_name))
+    window.show()
+    return app.exec()

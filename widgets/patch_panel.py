@@ -1,0 +1,132 @@
+"""Blade-parameter panel: a pyqtgraph ParameterTree over PatchParams, a preset picker and the
+global density. It shows the model and reports edits; it holds no algorithm."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from pyqtgraph.parametertree import Parameter, ParameterTree
+from PySide6.QtCore import Signal
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+
+from core.design import PatchDesign
+from core.params import PRESETS, ParameterError, PatchParams
+
+CUSTOM = "(custom)"
+
+
+def _field_param(f: dataclasses.Field, value) -> dict:
+    if f.name.endswith("_color"):
+        label = f.name.replace("_", " ").capitalize()
+        return {"name": f.name, "title": label, "type": "color",
+                "value": QColor.fromRgbF(*value)}
+    if f.type in ("bool", bool):
+        return {"name": f.name, "title": "Clustered thresholds", "type": "bool", "value": value}
+    spec = f.metadata["spec"]
+    kind = "int" if spec.integer else "float"
+    step = 1 if spec.integer else (spec.high - spec.low) / 200.0
+    return {"name": f.name, "title": spec.label, "type": kind, "value": value,
+            "limits": (spec.low, spec.high), "step": step,
+            "suffix": f" {spec.unit}" if spec.unit else "", "decimals": 4}
+
+
+class PatchPanel(QWidget):
+    params_edited = Signal(object)  # PatchParams
+    density_edited = Signal(float)
+
+    def __init__(self, design: PatchDesign, parent=None) -> None:
+        super().__init__(parent)
+        self.design = design
+        fields = dataclasses.fields(PatchParams)
+        children = [
+            {"name": "preset", "title": "Preset", "type": "list",
+             "limits": [*PRESETS, CUSTOM], "value": self._preset_of(design.params)},
+            {"name": "density", "title": "Global density", "type": "float",
+             "value": design.density, "limits": (0.0, 1.0), "step": 0.05},
+            {"name": "blades", "title": "Blades", "type": "group",
+             "children": [_field_param(f, getattr(design.params, f.name)) for f in fields]},
+        ]
+        self.root = Parameter.create(name="patch", type="group", children=children)
+        self.tree = ParameterTree(showHeader=False)
+        self.tree.setParameters(self.root, showTop=False)
+        self.message = QLabel("")
+        self.message.setWordWrap(True)
+        self.message.setStyleSheet("color: #b03020")
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.tree)
+        layout.addWidget(self.message)
+        self._updating = False
+        self.root.sigTreeStateChanged.connect(self._on_tree_changed)
+        design.params_changed.connect(self._on_params_changed)
+        design.density_changed.connect(self._on_density_changed)
+
+    @staticmethod
+    def _preset_of(params: PatchParams) -> str:
+        for name, preset in PRESETS.items():
+            if preset == params:
+                return name
+        return CUSTOM
+
+    def param(self, name: str) -> Parameter:
+        if name in ("preset", "density"):
+            return self.root.child(name)
+        return self.root.child("blades", name)
+
+    # -- widget → model ----------------------------------------------------------------------
+    def _on_tree_changed(self, _root, changes) -> None:
+        if self._updating:
+            return
+        for param, change, value in changes:
+            if change != "value":
+                continue
+            name = param.name()
+            if name == "preset":
+                if value in PRESETS:
+                    self.params_edited.emit(PRESETS[value])
+            elif name == "density":
+                self.density_edited.emit(float(value))
+            else:
+                self._edit_field(name, value)
+
+    def _edit_field(self, name: str, value) -> None:
+        if isinstance(value, QColor):
+            value = (round(value.redF(), 4), round(value.greenF(), 4), round(value.blueF(), 4))
+        try:
+            params = self.design.params.replace(**{name: value})
+        except ParameterError as exc:
+            self.message.setText(str(exc))
+            self._show(self.design.params)  # revert the control to the model
+            return
+        self.message.setText("")
+        self.params_edited.emit(params)
+
+    # -- model → widget ----------------------------------------------------------------------
+    def _show(self, params: PatchParams) -> None:
+        self._updating = True
+        try:
+            for f in dataclasses.fields(params):
+                value = getattr(params, f.name)
+                if f.name.endswith("_color"):
+                    value = QColor.fromRgbF(*value)
+                self.param(f.name).setValue(value)
+            self.param("preset").setValue(self._preset_of(params))
+        finally:
+            self._updating = False
+
+    def _on_params_changed(self, params: PatchParams) -> None:
+        self.message.setText("")
+        self._show(params)
+
+    def _on_density_changed(self, density: float) -> None:
+        self._updating = True
+        try:
+            self.param("density").setValue(density)
+        finally:
+            self._updating = False
+
+    def closeEvent(self, event) -> None:
+        self.design.params_changed.disconnect(self._on_params_changed)
+        self.design.density_changed.disconnect(self._on_density_changed)
+        super().closeEvent(event)

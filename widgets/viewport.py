@@ -1,0 +1,169 @@
+"""The live viewport: a QOpenGLWidget that drives the moderngl frame pipeline.
+
+Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
+W A S D move and Q E sink and rise. Frames are drawn on demand (after an edit or a camera move).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6.QtCore import QPoint, Qt, QTimer, Signal
+from PySide6.QtGui import QSurfaceFormat
+from PySide6.QtOpenGLWidgets import QOpenGLWidget
+
+from core.camera import Camera
+from core.patch import GrassPatch
+from core.stats import FrameStats
+from render import context
+from render.frame import FramePipeline
+
+
+def gl_format() -> QSurfaceFormat:
+    fmt = QSurfaceFormat()
+    fmt.setVersion(3, 3)
+    fmt.setProfile(QSurfaceFormat.OpenGLContextProfile.CoreProfile)
+    fmt.setDepthBufferSize(24)
+    return fmt
+
+
+class GrassViewport(QOpenGLWidget):
+    frame_rendered = Signal(object)  # FrameStats
+    camera_changed = Signal()
+
+    FLY_KEYS = {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
+
+    def __init__(self, camera: Camera, parent=None) -> None:
+        super().__init__(parent)
+        self.setFormat(gl_format())
+        self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
+        self.setMinimumSize(320, 240)
+        self.camera = camera
+        self.ctx = None
+        self.pipeline: FramePipeline | None = None
+        self._patch: GrassPatch | None = None
+        self._instances: np.ndarray | None = None
+        self._density = 1.0
+        self._drag: QPoint | None = None
+        self._button = Qt.MouseButton.NoButton
+        self.fly_mode = False
+        self._held: set[int] = set()
+        self._fly_timer = QTimer(self)
+        self._fly_timer.setInterval(30)
+        self._fly_timer.timeout.connect(self._fly_step)
+        self.last_stats = FrameStats()
+
+    # -- scene state (may arrive before the GL context exists) ------------------------------
+    def set_patch(self, patch: GrassPatch) -> None:
+        self._patch = patch
+        if self.pipeline is not None:
+            self.makeCurrent()
+            self.pipeline.set_patch(patch)
+            self.doneCurrent()
+        self.update()
+
+    def set_instances(self, instances: np.ndarray) -> None:
+        self._instances = instances
+        if self.pipeline is not None:
+            self.makeCurrent()
+            self.pipeline.set_instances(instances)
+            self.doneCurrent()
+        self.update()
+
+    def set_density(self, density: float) -> None:
+        self._density = density
+        if self.pipeline is not None:
+            self.pipeline.set_density(density)
+        self.update()
+
+    def set_camera(self, camera: Camera) -> None:
+        self.camera = camera
+        self.camera_changed.emit()
+        self.update()
+
+    # -- GL ----------------------------------------------------------------------------------
+    def initializeGL(self) -> None:
+        self.ctx = context.wrap_current()
+        self.pipeline = FramePipeline(self.ctx)
+        self.pipeline.set_density(self._density)
+        if self._patch is not None:
+            self.pipeline.set_patch(self._patch)
+        if self._instances is not None:
+            self.pipeline.set_instances(self._instances)
+
+    def paintGL(self) -> None:
+        if self.pipeline is None or self.ctx is None:
+            return
+        ratio = self.devicePixelRatio()
+        size = (max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio)))
+        out = self.ctx.detect_framebuffer(self.defaultFramebufferObject())
+        stats = self.pipeline.render(self.camera, out, size, measure=True)
+        self.last_stats = stats
+        self.frame_rendered.emit(stats)
+
+    # -- mouse and keys ----------------------------------------------------------------------
+    def mousePressEvent(self, event) -> None:
+        self._drag = event.position().toPoint()
+        self._button = event.button()
+
+    def mouseReleaseEvent(self, event) -> None:
+        self._drag = None
+        self._button = Qt.MouseButton.NoButton
+
+    def mouseMoveEvent(self, event) -> None:
+        if self._drag is None:
+            return
+        pos = event.position().toPoint()
+        dx, dy = pos.x() - self._drag.x(), pos.y() - self._drag.y()
+        self._drag = pos
+        if self._button == Qt.MouseButton.LeftButton:
+            self.camera.orbit(-0.4 * dx, 0.3 * dy)
+        else:
+            scale = 1.0 / max(self.height(), 1)
+            self.camera.pan(-dx * scale, dy * scale)
+        self.camera_changed.emit()
+        self.update()
+
+    def wheelEvent(self, event) -> None:
+        steps = event.angleDelta().y() / 120.0
+        self.camera.zoom(0.88**steps)
+        self.camera_changed.emit()
+        self.update()
+
+    def keyPressEvent(self, event) -> None:
+        key = event.key()
+        if key == Qt.Key.Key_F:
+            self.fly_mode = not self.fly_mode
+            self._held.clear()
+            self._fly_timer.stop()
+        elif self.fly_mode and key in self.FLY_KEYS:
+            if not event.isAutoRepeat():
+                self._held.add(key)
+            if not self._fly_timer.isActive():
+                self._fly_timer.start()
+        else:
+            super().keyPressEvent(event)
+
+    def keyReleaseEvent(self, event) -> None:
+        if not event.isAutoRepeat():
+            self._held.discard(event.key())
+        if not self._held:
+            self._fly_timer.stop()
+        super().keyReleaseEvent(event)
+
+    def _fly_step(self) -> None:
+        k = Qt.Key
+        speed = 0.03 * max(self.camera.distance, 1.0)
+        forward = (k.Key_W in self._held) - (k.Key_S in self._held)
+        strafe = (k.Key_D in self._held) - (k.Key_A in self._held)
+        rise = (k.Key_E in self._held) - (k.Key_Q in self._held)
+        if forward or strafe or rise:
+            self.camera.fly(forward * speed, strafe * speed, rise * speed)
+            self.camera_changed.emit()
+            self.update()
+
+    def release_gl(self) -> None:
+        if self.pipeline is not None:
+            self.makeCurrent()
+            self.pipeline.release()
+            self.pipeline = None
+            self.doneCurrent()
