@@ -19,7 +19,9 @@ def _size(text: str) -> tuple[int, int]:
     try:
         w, h = (int(v) for v in text.lower().split("x"))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"malformed size {text!r}; expected WxH, e.g. 1024x768") from None
+        raise argparse.ArgumentTypeError(
+            f"malformed size {text!r}; expected WxH, e.g. 1024x768"
+        ) from None
     if not (1 <= w <= 8192 and 1 <= h <= 8192):
         raise argparse.ArgumentTypeError(f"size {text!r} out of range; each side 1 … 8192")
     return w, h
@@ -47,7 +49,9 @@ def parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command")
 
     r = sub.add_parser("render", help="render one frame headless to a PNG")
-    r.add_argument("--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})")
+    r.add_argument(
+        "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
+    )
     r.add_argument("--camera", help="named camera of the scene")
     r.add_argument("--eye", type=_vec3, help="camera position X,Y,Z (with --target)")
     r.add_argument("--target", type=_vec3, help="point the camera looks at X,Y,Z")
@@ -98,6 +102,7 @@ def cmd_render(args: argparse.Namespace) -> int:
     if args.eye is not None:
         try:
             from core.camera import Camera
+
             camera = Camera.from_eye_target(args.eye, args.target)
         except ValueError as exc:
             raise CliError(f"--eye/--target: {exc}") from None
@@ -105,8 +110,10 @@ def cmd_render(args: argparse.Namespace) -> int:
     else:
         camera_name = args.camera or scene.default_camera
         if camera_name not in scene.cameras:
-            raise CliError(f"unknown camera {camera_name!r} for scene {scene.name}; "
-                           f"cameras: {', '.join(scene.cameras)}")
+            raise CliError(
+                f"unknown camera {camera_name!r} for scene {scene.name}; "
+                f"cameras: {', '.join(scene.cameras)}"
+            )
         camera = scene.camera(camera_name)
 
     renderer = HeadlessRenderer()
@@ -116,6 +123,7 @@ def cmd_render(args: argparse.Namespace) -> int:
 
     if args.out is not None:
         from PIL import Image
+
         try:
             Image.fromarray(image).save(args.out, format="PNG")
         except OSError as exc:
@@ -171,7 +179,10 @@ def cmd_gui(_: argparse.Namespace) -> int:
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     handler = {
-        None: cmd_gui, "render": cmd_render, "scenes": cmd_scenes, "info": cmd_info,
+        None: cmd_gui,
+        "render": cmd_render,
+        "scenes": cmd_scenes,
+        "info": cmd_info,
         "bench": cmd_bench,
     }[args.command]
     name = f"sward {args.command}" if args.command else "sward"

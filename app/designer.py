@@ -145,7 +145,9 @@ class DesignerWindow(QMainWindow):
         view.addAction(reset)
         for name in self.scene.cameras:
             act = QAction(f"Camera: {name}", self)
-            act.triggered.connect(lambda _=False, n=name: self.viewport.set_camera(self.scene.camera(n)))
+            act.triggered.connect(
+                lambda _=False, n=name: self.viewport.set_camera(self.scene.camera(n))
+            )
             view.addAction(act)
         view.addSeparator()
         view.addAction(dock.toggleViewAction())

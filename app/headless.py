@@ -23,8 +23,9 @@ class HeadlessRenderer:
         self._out: moderngl.Framebuffer | None = None
         self._size = (0, 0)
 
-    def load(self, scene: Scene, params: PatchParams | None = None,
-             density: float | None = None) -> GrassPatch:
+    def load(
+        self, scene: Scene, params: PatchParams | None = None, density: float | None = None
+    ) -> GrassPatch:
         patch = generate_patch(params or scene.params)
         self.pipeline.set_patch(patch)
         self.pipeline.set_instances(scene.instances())
@@ -40,8 +41,9 @@ class HeadlessRenderer:
             self._size = size
         return self._out
 
-    def render(self, camera: Camera, size: tuple[int, int],
-               measure: bool = True) -> tuple[np.ndarray, FrameStats]:
+    def render(
+        self, camera: Camera, size: tuple[int, int], measure: bool = True
+    ) -> tuple[np.ndarray, FrameStats]:
         """One frame: an (h, w, 3) uint8 image, top row first, and its statistics."""
         out = self._target(size)
         stats = self.pipeline.render(camera, out, size, measure=measure)

@@ -73,8 +73,9 @@ class Camera:
             raise ValueError("camera eye and target are the same point")
         pitch = float(np.degrees(np.arcsin(np.clip(d[1] / dist, -1, 1))))
         yaw = float(np.degrees(np.arctan2(d[0], d[2])))
-        return cls(target=tuple(float(x) for x in target), yaw=yaw, pitch=pitch,
-                   distance=dist, **kw)
+        return cls(
+            target=tuple(float(x) for x in target), yaw=yaw, pitch=pitch, distance=dist, **kw
+        )
 
     @property
     def eye(self) -> np.ndarray:

@@ -42,7 +42,9 @@ def perlin2d(x: np.ndarray, y: np.ndarray, period: int, seed: int) -> np.ndarray
     return bottom * (1 - v) + top * v
 
 
-def fractal_noise(x: np.ndarray, y: np.ndarray, period: int, seed: int, octaves: int = 2) -> np.ndarray:
+def fractal_noise(
+    x: np.ndarray, y: np.ndarray, period: int, seed: int, octaves: int = 2
+) -> np.ndarray:
     """Low-frequency noise: a few octaves of periodic Perlin noise, amplitude halving."""
     total = np.zeros(np.broadcast(x, y).shape)
     amplitude = 1.0

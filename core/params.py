@@ -61,8 +61,11 @@ class PatchParams:
                 _check_scalar(f.name, value, spec)
             elif f.name.endswith("_color"):
                 _check_color(f.name, value)
-        for lo, hi in (("length_min", "length_max"), ("width_min", "width_max"),
-                       ("tilt_min", "tilt_max")):
+        for lo, hi in (
+            ("length_min", "length_max"),
+            ("width_min", "width_max"),
+            ("tilt_min", "tilt_max"),
+        ):
             if getattr(self, lo) > getattr(self, hi):
                 raise ParameterError(
                     f"{lo} ({getattr(self, lo):g}) must not exceed {hi} ({getattr(self, hi):g})"
@@ -130,25 +133,58 @@ def _check_color(name: str, value: Any) -> None:
 PRESETS: dict[str, PatchParams] = {
     "medium long grass": PatchParams(),
     "short-cut turf": PatchParams(
-        blade_count=5000, length_min=0.05, length_max=0.08, width_min=0.008, width_max=0.012,
-        tilt_min=0.0, tilt_max=20.0, bending=0.15, subdivisions=2,
-        blade_color_variation=0.12, vertex_light_variation=0.10,
-        root_color=(0.12, 0.30, 0.06), tip_color=(0.36, 0.62, 0.16),
-        cluster_sigma=1.0, clustered=False, patch_height=0.10,
+        blade_count=5000,
+        length_min=0.05,
+        length_max=0.08,
+        width_min=0.008,
+        width_max=0.012,
+        tilt_min=0.0,
+        tilt_max=20.0,
+        bending=0.15,
+        subdivisions=2,
+        blade_color_variation=0.12,
+        vertex_light_variation=0.10,
+        root_color=(0.12, 0.30, 0.06),
+        tip_color=(0.36, 0.62, 0.16),
+        cluster_sigma=1.0,
+        clustered=False,
+        patch_height=0.10,
     ),
     "long thin meadow grass": PatchParams(
-        blade_count=1600, length_min=0.35, length_max=0.65, width_min=0.005, width_max=0.009,
-        tilt_min=5.0, tilt_max=45.0, bending=0.45, subdivisions=6,
-        blade_color_variation=0.45, vertex_light_variation=0.2,
-        root_color=(0.20, 0.30, 0.08), tip_color=(0.62, 0.66, 0.30),
-        cluster_sigma=0.12, clustered=True, patch_height=0.70,
+        blade_count=1600,
+        length_min=0.35,
+        length_max=0.65,
+        width_min=0.005,
+        width_max=0.009,
+        tilt_min=5.0,
+        tilt_max=45.0,
+        bending=0.45,
+        subdivisions=6,
+        blade_color_variation=0.45,
+        vertex_light_variation=0.2,
+        root_color=(0.20, 0.30, 0.08),
+        tip_color=(0.62, 0.66, 0.30),
+        cluster_sigma=0.12,
+        clustered=True,
+        patch_height=0.70,
     ),
     "utility lawn": PatchParams(
-        blade_count=3200, length_min=0.10, length_max=0.18, width_min=0.010, width_max=0.018,
-        tilt_min=0.0, tilt_max=30.0, bending=0.25, subdivisions=3,
-        blade_color_variation=0.3, vertex_light_variation=0.15,
-        root_color=(0.18, 0.32, 0.07), tip_color=(0.45, 0.64, 0.2),
-        cluster_sigma=0.3, clustered=True, patch_height=0.22,
+        blade_count=3200,
+        length_min=0.10,
+        length_max=0.18,
+        width_min=0.010,
+        width_max=0.018,
+        tilt_min=0.0,
+        tilt_max=30.0,
+        bending=0.25,
+        subdivisions=3,
+        blade_color_variation=0.3,
+        vertex_light_variation=0.15,
+        root_color=(0.18, 0.32, 0.07),
+        tip_color=(0.45, 0.64, 0.2),
+        cluster_sigma=0.3,
+        clustered=True,
+        patch_height=0.22,
     ),
 }
 DEFAULT_PRESET = "medium long grass"

@@ -43,8 +43,12 @@ class FramePipeline:
         self.geometry.set_instances(instances)
         if instances.size:
             o = instances["origin"]
-            self.ground.grass_rect = (float(o[:, 0].min()), float(o[:, 1].min()),
-                                      float(o[:, 0].max() + 1), float(o[:, 1].max() + 1))
+            self.ground.grass_rect = (
+                float(o[:, 0].min()),
+                float(o[:, 1].min()),
+                float(o[:, 0].max() + 1),
+                float(o[:, 1].max() + 1),
+            )
 
     def set_density(self, density: float) -> None:
         self.geometry.density = float(density)
@@ -63,7 +67,11 @@ class FramePipeline:
         return self._msaa
 
     def render(
-        self, camera: Camera, out: moderngl.Framebuffer, size: tuple[int, int], measure: bool = False
+        self,
+        camera: Camera,
+        out: moderngl.Framebuffer,
+        size: tuple[int, int],
+        measure: bool = False,
     ) -> FrameStats:
         """Draw one frame into `out` (size w × h) and return its statistics."""
         ctx = self.ctx

@@ -17,8 +17,14 @@ from render.uniforms import FrameUniforms
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
 # (attribute, float count) in the order of core.patch.VERTEX_DTYPE and core.grid.INSTANCE_DTYPE.
-VERTEX_ATTRIBUTES = (("in_position", 3), ("in_normal", 3), ("in_uv", 2), ("in_color", 3),
-                     ("in_root", 2), ("in_threshold", 1))
+VERTEX_ATTRIBUTES = (
+    ("in_position", 3),
+    ("in_normal", 3),
+    ("in_uv", 2),
+    ("in_color", 3),
+    ("in_root", 2),
+    ("in_threshold", 1),
+)
 INSTANCE_ATTRIBUTES = (("in_origin", 2), ("in_cell_density", 1))
 
 
@@ -101,7 +107,9 @@ class GeometryRenderer:
                 obj.release()
 
 
-def _upload(ctx: moderngl.Context, buf: moderngl.Buffer | None, data: np.ndarray) -> moderngl.Buffer:
+def _upload(
+    ctx: moderngl.Context, buf: moderngl.Buffer | None, data: np.ndarray
+) -> moderngl.Buffer:
     raw = np.ascontiguousarray(data).tobytes()
     if buf is not None and buf.size == len(raw):
         buf.write(raw)
@@ -111,8 +119,12 @@ def _upload(ctx: moderngl.Context, buf: moderngl.Buffer | None, data: np.ndarray
     return ctx.buffer(raw)
 
 
-def _layout(program: moderngl.Program, buffer: moderngl.Buffer,
-            attributes: tuple[tuple[str, int], ...], suffix: str) -> tuple:
+def _layout(
+    program: moderngl.Program,
+    buffer: moderngl.Buffer,
+    attributes: tuple[tuple[str, int], ...],
+    suffix: str,
+) -> tuple:
     """A vertex-array entry that skips attributes the program does not use."""
     parts, names = [], []
     for name, count in attributes:

@@ -19,16 +19,22 @@ CUSTOM = "(custom)"
 def _field_param(f: dataclasses.Field, value) -> dict:
     if f.name.endswith("_color"):
         label = f.name.replace("_", " ").capitalize()
-        return {"name": f.name, "title": label, "type": "color",
-                "value": QColor.fromRgbF(*value)}
+        return {"name": f.name, "title": label, "type": "color", "value": QColor.fromRgbF(*value)}
     if f.type in ("bool", bool):
         return {"name": f.name, "title": "Clustered thresholds", "type": "bool", "value": value}
     spec = f.metadata["spec"]
     kind = "int" if spec.integer else "float"
     step = 1 if spec.integer else (spec.high - spec.low) / 200.0
-    return {"name": f.name, "title": spec.label, "type": kind, "value": value,
-            "limits": (spec.low, spec.high), "step": step,
-            "suffix": f" {spec.unit}" if spec.unit else "", "decimals": 4}
+    return {
+        "name": f.name,
+        "title": spec.label,
+        "type": kind,
+        "value": value,
+        "limits": (spec.low, spec.high),
+        "step": step,
+        "suffix": f" {spec.unit}" if spec.unit else "",
+        "decimals": 4,
+    }
 
 
 class PatchPanel(QWidget):
@@ -40,12 +46,27 @@ class PatchPanel(QWidget):
         self.design = design
         fields = dataclasses.fields(PatchParams)
         children = [
-            {"name": "preset", "title": "Preset", "type": "list",
-             "limits": [*PRESETS, CUSTOM], "value": self._preset_of(design.params)},
-            {"name": "density", "title": "Global density", "type": "float",
-             "value": design.density, "limits": (0.0, 1.0), "step": 0.05},
-            {"name": "blades", "title": "Blades", "type": "group",
-             "children": [_field_param(f, getattr(design.params, f.name)) for f in fields]},
+            {
+                "name": "preset",
+                "title": "Preset",
+                "type": "list",
+                "limits": [*PRESETS, CUSTOM],
+                "value": self._preset_of(design.params),
+            },
+            {
+                "name": "density",
+                "title": "Global density",
+                "type": "float",
+                "value": design.density,
+                "limits": (0.0, 1.0),
+                "step": 0.05,
+            },
+            {
+                "name": "blades",
+                "title": "Blades",
+                "type": "group",
+                "children": [_field_param(f, getattr(design.params, f.name)) for f in fields],
+            },
         ]
         self.root = Parameter.create(name="patch", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)

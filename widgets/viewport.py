@@ -6,6 +6,8 @@ W A S D move and Q E sink and rise. Frames are drawn on demand (after an edit or
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import numpy as np
 from PySide6.QtCore import QPoint, Qt, QTimer, Signal
 from PySide6.QtGui import QSurfaceFormat
@@ -30,7 +32,9 @@ class GrassViewport(QOpenGLWidget):
     frame_rendered = Signal(object)  # FrameStats
     camera_changed = Signal()
 
-    FLY_KEYS = {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
+    FLY_KEYS: ClassVar[frozenset] = frozenset(
+        {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
+    )
 
     def __init__(self, camera: Camera, parent=None) -> None:
         super().__init__(parent)

@@ -1,0 +1,32 @@
+"""`sward bench`: run benchmark suites from benchmarks/, print a table, write JSON."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+SUITES = ("foundation",)
+
+
+def run(suites: list[str] | None, out: Path | None) -> int:
+    import importlib
+
+    chosen = suites or list(SUITES)
+    unknown = [s for s in chosen if s not in SUITES]
+    if unknown:
+        print(f"sward bench: error: unknown suite {unknown[0]!r}; suites: {', '.join(SUITES)}",
+              file=sys.stderr)
+        return 2
+    results = {}
+    for name in chosen:
+        module = importlib.import_module(f"benchmarks.{name}")
+        results[name] = module.run()
+        for row in results[name]:
+            numbers = {k: v for k, v in row.items() if isinstance(v, float)}
+            cells = "  ".join(f"{k}={v:,.1f}" for k, v in numbers.items())
+            print(f"{name:12s} {row['name']:32s} {cells}")
+    if out is not None:
+        out.write_text(json.dumps(results, indent=2) + "\n")
+        print(f"wrote {out}")
+    return 0

@@ -1,0 +1,44 @@
+"""Shared fixtures: one standalone EGL context for the session, GL error checks per test."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from render import context
+
+
+@pytest.fixture(scope="session")
+def gl_ctx():
+    ctx = context.standalone()
+    yield ctx
+    ctx.release()
+
+
+@pytest.fixture
+def ctx(gl_ctx):
+    assert gl_ctx.error == "GL_NO_ERROR"
+    yield gl_ctx
+    assert gl_ctx.error == "GL_NO_ERROR"
+    gl_ctx.disable_direct(0x809E)
+    gl_ctx.disable(gl_ctx.DEPTH_TEST | gl_ctx.CULL_FACE | gl_ctx.BLEND)
+
+
+@pytest.fixture(scope="session")
+def headless(gl_ctx):
+    from app.headless import HeadlessRenderer
+
+    renderer = HeadlessRenderer(gl_ctx)
+    yield renderer
+    renderer.release()
+
+
+def grass_mask(image: np.ndarray) -> np.ndarray:
+    """Pixels that show grass: clearly green, unlike sky, soil or fog."""
+    rgb = image.astype(np.float32)
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    return (g > 1.12 * r + 4) & (g > 1.25 * b + 4)
+
+
+def coverage(image: np.ndarray) -> float:
+    return float(grass_mask(image).mean())

@@ -1,0 +1,57 @@
+"""Standalone-EGL renders of the patch grid, judged by image statistics."""
+
+import numpy as np
+import pytest
+
+from app.scenes import get_scene
+from core.params import PatchParams
+from tests.conftest import coverage, grass_mask
+
+SIZE = (200, 150)
+SCENE = get_scene("patch-grid")
+PARAMS = SCENE.params.replace(blade_count=1200)
+
+
+def render(headless, params=PARAMS, density=1.0, camera="top"):
+    headless.load(SCENE, params, density=density)
+    image, stats = headless.render(SCENE.camera(camera), SIZE)
+    return image, stats
+
+
+def test_grid_is_covered_with_lit_grass(headless, ctx):
+    image, stats = render(headless)
+    assert coverage(image) > 0.5  # from above, the 8 × 8 grid fills most of the frame
+    green = image[grass_mask(image)].mean(axis=0)
+    assert green[1] > green[0] > green[2]  # green grass, lit (not black)
+    assert green[1] > 60
+    assert stats.c_g == 64 and stats.t_g_ms > 0 and stats.width == SIZE[0]
+
+
+def test_halving_density_lowers_coverage(headless, ctx):
+    full, _ = render(headless, density=1.0, camera="default")
+    half, stats = render(headless, density=0.5, camera="default")
+    assert coverage(half) < 0.85 * coverage(full)
+    assert stats.blades == pytest.approx(0.5 * 64 * PARAMS.blade_count, rel=0.05)
+
+
+def test_zero_density_shows_bare_ground(headless, ctx):
+    image, _ = render(headless, density=0.0)
+    assert coverage(image) < 0.01
+
+
+def test_seed_changes_pixels_not_statistics(headless, ctx):
+    a, _ = render(headless, camera="default")
+    b, _ = render(headless, PARAMS.replace(seed=PARAMS.seed + 7), camera="default")
+    assert np.mean(np.any(a != b, axis=-1)) > 0.1
+    assert coverage(b) == pytest.approx(coverage(a), abs=0.03)
+    assert np.abs(a.mean(axis=(0, 1)) - b.mean(axis=(0, 1))).max() < 4
+
+
+def test_taller_grass_covers_more_at_grazing_view(headless, ctx):
+    short, _ = render(
+        headless,
+        PatchParams(blade_count=1200, length_min=0.04, length_max=0.06, patch_height=0.1),
+        camera="grazing",
+    )
+    tall, _ = render(headless, camera="grazing")
+    assert coverage(tall) > coverage(short) + 0.05

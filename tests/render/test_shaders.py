@@ -1,0 +1,37 @@
+import pytest
+
+from render.shaders import ShaderError, load_program, program_names, stage_source
+
+EXPECTED = {
+    "geometry.glsl": {
+        "u_view_proj",
+        "u_density",
+        "u_blade",
+        "u_light_dir",
+        "in_position",
+        "in_threshold",
+        "in_origin",
+        "in_cell_density",
+    },
+    "ground.glsl": {"u_view_proj", "u_extent", "u_grass_rect", "in_corner"},
+}
+
+
+@pytest.mark.parametrize("name", program_names())
+def test_every_shader_compiles_with_expected_inputs(ctx, name):
+    program = load_program(ctx, name)
+    assert EXPECTED.get(name, set()) <= set(program)
+
+
+def test_every_program_is_known():
+    assert set(program_names()) == set(EXPECTED)
+
+
+def test_stage_define_follows_version_line():
+    src = stage_source("geometry.glsl", "VERTEX_SHADER").splitlines()
+    assert src[0].startswith("#version") and src[1] == "#define VERTEX_SHADER"
+
+
+def test_missing_shader_names_the_file(ctx):
+    with pytest.raises(ShaderError, match=r"nope\.glsl"):
+        load_program(ctx, "nope.glsl")

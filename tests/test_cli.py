@@ -1,0 +1,89 @@
+"""The command line as a user runs it: a real process, its output and exit status."""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+from PIL import Image
+
+from tests.conftest import coverage
+
+
+def sward(*args, env=None):
+    return subprocess.run(
+        [sys.executable, "-m", "app.cli", *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=240,
+    )
+
+
+def test_render_writes_png_and_stats(tmp_path):
+    out, st = tmp_path / "lawn.png", tmp_path / "s.json"
+    r = sward(
+        "render",
+        "--scene",
+        "patch-grid",
+        "--size",
+        "160x120",
+        "--eye",
+        "3,2,3",
+        "--target",
+        "0,0,0",
+        "--out",
+        str(out),
+        "--stats",
+        str(st),
+    )
+    assert r.returncode == 0, r.stderr
+    import numpy as np
+
+    image = np.asarray(Image.open(out))
+    assert image.shape == (120, 160, 3)
+    assert coverage(image) > 0.3
+    data = json.loads(st.read_text())
+    for key in ("t_a_ms", "t_g_ms", "c_g", "width", "height", "scene", "fps"):
+        assert key in data
+    assert (data["width"], data["height"], data["scene"], data["c_g"]) == (
+        160,
+        120,
+        "patch-grid",
+        64,
+    )
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--scene", "moon"], ["unknown scene", "moon", "patch-grid"]),
+        (["--size", "12by4"], ["malformed size", "12by4"]),
+        (["--out", "/no/such/folder/x.png"], ["cannot write", "/no/such/folder"]),
+        (["--camera", "drone"], ["unknown camera", "drone"]),
+        (["--density", "3"], ["--density", "out of range"]),
+        (["--eye", "1,2"], ["malformed point"]),
+    ],
+)
+def test_bad_input_is_one_clear_line(tmp_path, args, words):
+    if "--out" not in args:
+        args = [*args, "--out", str(tmp_path / "x.png")]
+    r = sward("render", *args)
+    assert r.returncode != 0
+    assert "Traceback" not in r.stderr
+    last = r.stderr.strip().splitlines()[-1]
+    for word in words:
+        assert word in last
+
+
+def test_designer_without_display_explains_headless_rendering():
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    r = sward(env=env)
+    assert r.returncode != 0 and "Traceback" not in r.stderr
+    assert "no display" in r.stderr and "sward render" in r.stderr
+
+
+def test_scenes_lists_patch_grid():
+    r = sward("scenes")
+    assert r.returncode == 0 and "patch-grid" in r.stdout
