@@ -15,8 +15,10 @@ def run(suites: list[str] | None, out: Path | None) -> int:
     chosen = suites or list(SUITES)
     unknown = [s for s in chosen if s not in SUITES]
     if unknown:
-        print(f"sward bench: error: unknown suite {unknown[0]!r}; suites: {', '.join(SUITES)}",
-              file=sys.stderr)
+        print(
+            f"sward bench: error: unknown suite {unknown[0]!r}; suites: {', '.join(SUITES)}",
+            file=sys.stderr,
+        )
         return 2
     results = {}
     for name in chosen:

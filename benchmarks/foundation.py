@@ -21,8 +21,11 @@ def patch_generation(runs: int = 7) -> dict:
         start = time.perf_counter()
         generate_patch(params.replace(seed=100 + i))
         times.append((time.perf_counter() - start) * 1000.0)
-    return {"name": "patch_generation_5000x4", "median_ms": statistics.median(times),
-            "runs_ms": times}
+    return {
+        "name": "patch_generation_5000x4",
+        "median_ms": statistics.median(times),
+        "runs_ms": times,
+    }
 
 
 def geometry_frame(runs: int = 5, size: tuple[int, int] = (1024, 768)) -> dict:
