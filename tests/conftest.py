@@ -1,4 +1,9 @@
-"""Shared fixtures: one standalone EGL context for the session, GL error checks per test."""
+"""Shared fixtures: one standalone EGL context for the session, GL error checks per test.
+
+Tests marked `gui` (real windows under Xvfb) must run in a process of their own: Mesa cannot hold
+the standalone EGL context and Qt's GLX widget context in one process. `make test` runs
+`pytest -m "not gui"` and then `pytest -m gui`.
+"""
 
 from __future__ import annotations
 
@@ -42,3 +47,12 @@ def grass_mask(image: np.ndarray) -> np.ndarray:
 
 def coverage(image: np.ndarray) -> float:
     return float(grass_mask(image).mean())
+
+
+def pytest_collection_modifyitems(config, items):
+    kinds = {"gui" in item.keywords for item in items}
+    if kinds == {True, False}:
+        raise pytest.UsageError(
+            'window tests (marker gui) and EGL tests cannot share a process; run '
+            '`pytest -m "not gui"` and `pytest -m gui` separately (as `make test` does)'
+        )
