@@ -53,6 +53,6 @@ def pytest_collection_modifyitems(config, items):
     kinds = {"gui" in item.keywords for item in items}
     if kinds == {True, False}:
         raise pytest.UsageError(
-            'window tests (marker gui) and EGL tests cannot share a process; run '
+            "window tests (marker gui) and EGL tests cannot share a process; run "
             '`pytest -m "not gui"` and `pytest -m gui` separately (as `make test` does)'
         )
