@@ -49,6 +49,7 @@ def coverage(image: np.ndarray) -> float:
     return float(grass_mask(image).mean())
 
 
+@pytest.hookimpl(trylast=True)
 def pytest_collection_modifyitems(config, items):
     kinds = {"gui" in item.keywords for item in items}
     if kinds == {True, False}:
