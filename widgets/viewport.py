@@ -1,7 +1,8 @@
 """The live viewport: a QOpenGLWidget that drives the moderngl frame pipeline.
 
 Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
-W A S D move and Q E sink and rise. Frames are drawn on demand (after an edit or a camera move).
+W A S D move and Q E sink and rise. Frames are drawn on demand (after an edit or a camera move);
+while the camera moves they are drawn without MSAA (preview), then once more at full quality.
 """
 
 from __future__ import annotations
@@ -100,7 +101,8 @@ class GrassViewport(QOpenGLWidget):
         ratio = self.devicePixelRatio()
         size = (max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio)))
         out = self.ctx.detect_framebuffer(self.defaultFramebufferObject())
-        stats = self.pipeline.render(self.camera, out, size, measure=True)
+        moving = self._drag is not None or self._fly_timer.isActive()
+        stats = self.pipeline.render(self.camera, out, size, measure=True, preview=moving)
         self.last_stats = stats
         self.frame_rendered.emit(stats)
 
@@ -112,6 +114,7 @@ class GrassViewport(QOpenGLWidget):
     def mouseReleaseEvent(self, event) -> None:
         self._drag = None
         self._button = Qt.MouseButton.NoButton
+        self.update()  # the full-quality frame after a preview drag
 
     def mouseMoveEvent(self, event) -> None:
         if self._drag is None:
@@ -150,8 +153,9 @@ class GrassViewport(QOpenGLWidget):
     def keyReleaseEvent(self, event) -> None:
         if not event.isAutoRepeat():
             self._held.discard(event.key())
-        if not self._held:
+        if not self._held and self._fly_timer.isActive():
             self._fly_timer.stop()
+            self.update()
         super().keyReleaseEvent(event)
 
     def _fly_step(self) -> None:

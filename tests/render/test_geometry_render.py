@@ -55,3 +55,14 @@ def test_taller_grass_covers_more_at_grazing_view(headless, ctx):
     )
     tall, _ = render(headless, camera="grazing")
     assert coverage(tall) > coverage(short) + 0.05
+
+
+def test_preview_frame_shows_the_same_grass_without_msaa(headless, ctx):
+    headless.load(SCENE, PARAMS)
+    camera = SCENE.camera("default")
+    full, _ = headless.render(camera, SIZE)
+    out = headless._target(SIZE)
+    headless.pipeline.render(camera, out, SIZE, preview=True)
+    raw = np.frombuffer(out.read(components=3, alignment=1), np.uint8)
+    preview = raw.reshape(SIZE[1], SIZE[0], 3)[::-1]
+    assert coverage(preview) == pytest.approx(coverage(full), abs=0.08)
