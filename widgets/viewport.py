@@ -60,17 +60,18 @@ class GrassViewport(QOpenGLWidget):
     # -- scene state (may arrive before the GL context exists) ------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
         self._patch = patch
-        if self.pipeline is not None:
-            self.makeCurrent()
-            self.pipeline.set_patch(patch)
-            self.doneCurrent()
-        self.update()
+        self._upload(lambda pipeline: pipeline.set_patch(patch))
 
     def set_instances(self, instances: np.ndarray) -> None:
         self._instances = instances
+        self._upload(lambda pipeline: pipeline.set_instances(instances))
+
+    def _upload(self, fn) -> None:
+        """Run a GL upload with this widget's context current (later, in initializeGL, if
+        the context does not exist yet), then schedule a frame."""
         if self.pipeline is not None:
             self.makeCurrent()
-            self.pipeline.set_instances(instances)
+            fn(self.pipeline)
             self.doneCurrent()
         self.update()
 
