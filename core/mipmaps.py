@@ -1,0 +1,116 @@
+"""Mip maps for semi-transparent slices (thesis 4.2.2-4.2.3), on float arrays.
+
+OpenGL's box filter averages alpha, so thin blades fade away in the reduced levels (Fig. 4.8).
+Instead each level takes
+- colour weighted by alpha (eqs. 4.9-4.10),
+- alpha rescaled so that the share of texels passing the alpha test equals the base level's
+  (eqs. 4.11-4.15, Castaño 2010). The thesis takes the max of the four texels (eq. 4.12) before
+  rescaling; on thin blades the max saturates within three levels (every texel 1, measured in
+  tests/core/test_mipmaps.py) and no rescale can bring the coverage back. So, as Castaño does,
+  the pyramid carries the plain average of alpha — the true share of the footprint that is
+  covered — and the rescale turns that back into the base level's coverage,
+and after the pyramid is built, colour bleeding fills the transparent part of every texel with
+the colour of the next level (eq. 4.16), from the smallest level down, so bilinear filtering at
+blade edges mixes in blade colour instead of the background (no grey halo, Fig. 4.9).
+
+Images are float32 arrays (h, w, 4) with values in 0 … 1, rows first.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _quads(image: np.ndarray) -> np.ndarray:
+    """(h, w, c) → (h/2, w/2, 4, c): the four texels under each texel of the next level.
+
+    Sides must be even or 1 (power-of-two slices); a side of 1 stays 1.
+    """
+    h, w = image.shape[:2]
+    if (h > 1 and h % 2) or (w > 1 and w % 2):
+        raise ValueError(f"mip sizes must be even or 1, got {w} × {h}")
+    if h == 1:
+        image = np.repeat(image, 2, axis=0)
+    if w == 1:
+        image = np.repeat(image, 2, axis=1)
+    h, w = image.shape[:2]
+    q = image.reshape(h // 2, 2, w // 2, 2, -1).transpose(0, 2, 1, 3, 4)
+    return q.reshape(h // 2, w // 2, 4, -1)
+
+
+def box_reduce(image: np.ndarray) -> np.ndarray:
+    """OpenGL's box filter (eqs. 4.7-4.8): plain average of colour and alpha."""
+    return _quads(image).mean(axis=2)
+
+
+def alpha_weighted_reduce(image: np.ndarray, alpha: str = "mean") -> np.ndarray:
+    """Colour weighted by alpha (eq. 4.10); alpha the mean of the four, or their max
+    (eq. 4.12) with alpha="max"."""
+    q = _quads(image)
+    a = q[..., 3]
+    s_a = a.sum(axis=2)
+    s_a = np.where(s_a == 0.0, 1.0, s_a)  # eq. 4.9
+    color = (q[..., :3] * a[..., None]).sum(axis=2) / s_a[..., None]
+    # fully transparent quads keep their plain average so bleeding has something to start from
+    empty = a.sum(axis=2) == 0.0
+    color[empty] = q[..., :3].mean(axis=2)[empty]
+    out = np.empty((*q.shape[:2], 4), dtype=np.float32)
+    out[..., :3] = color
+    out[..., 3] = a.max(axis=2) if alpha == "max" else a.mean(axis=2)
+    return out
+
+
+def coverage(alpha: np.ndarray, alpha_ref: float) -> float:
+    """Share of texels passing the alpha test a > a_r (eq. 4.11)."""
+    return float(np.mean(alpha > alpha_ref))
+
+
+def coverage_scale(alpha: np.ndarray, target: float, alpha_ref: float) -> float:
+    """scale = a_r / a'_r, with a'_r the test value that lets the share of texels closest to
+    `target` pass (eqs. 4.13-4.14); a texel passes where scale · a > a_r ⟺ a > a'_r."""
+    values = np.unique(alpha[alpha > 0.0])
+    if target <= 0.0 or values.size == 0:
+        return 1.0
+    flat = np.sort(alpha.ravel())
+    # share of texels with a >= values[k], for every k
+    passing = 1.0 - np.searchsorted(flat, values, side="left") / flat.size
+    k = int(np.argmin(np.abs(passing - target)))
+    below = values[k - 1] if k > 0 else 0.0
+    a_r_new = 0.5 * (below + values[k])  # between two alpha values: a > a'_r ⟺ a >= values[k]
+    return alpha_ref / a_r_new
+
+
+def build_mips(base: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarray]:
+    """The full pyramid down to 1 × 1, coverage-preserving alpha, then colour bleeding."""
+    base = np.asarray(base, dtype=np.float32)
+    target = coverage(base[..., 3], alpha_ref)
+    raw = [base]
+    while raw[-1].shape[0] > 1 or raw[-1].shape[1] > 1:
+        raw.append(alpha_weighted_reduce(raw[-1]))
+    levels = [base.copy()]
+    for level in raw[1:]:
+        scaled = level.copy()
+        scaled[..., 3] = np.clip(
+            level[..., 3] * coverage_scale(level[..., 3], target, alpha_ref), 0.0, 1.0
+        )
+        levels.append(scaled)
+    return bleed_colors(levels)
+
+
+def bleed_colors(levels: list[np.ndarray]) -> list[np.ndarray]:
+    """C'_i = A_i · C_i + (1 − A_i) · C'_{i+1} with nearest sampling of the next level (eq. 4.16),
+    processed from the smallest level to the base."""
+    out = [lvl.copy() for lvl in levels]
+    for i in range(len(out) - 2, -1, -1):
+        cur, nxt = out[i], out[i + 1]
+        h, w = cur.shape[:2]
+        ys = np.minimum(np.arange(h) * nxt.shape[0] // h, nxt.shape[0] - 1)
+        xs = np.minimum(np.arange(w) * nxt.shape[1] // w, nxt.shape[1] - 1)
+        up = nxt[ys][:, xs, :3]
+        a = cur[..., 3:4]
+        cur[..., :3] = a * cur[..., :3] + (1.0 - a) * up
+    return out
+
+
+def to_uint8(level: np.ndarray) -> np.ndarray:
+    return (np.clip(level, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)

@@ -1,0 +1,90 @@
+import numpy as np
+import pytest
+
+from core.mipmaps import (
+    alpha_weighted_reduce,
+    bleed_colors,
+    box_reduce,
+    build_mips,
+    coverage,
+)
+
+GREEN = np.array([0.25, 0.6, 0.1], dtype=np.float32)
+REF = 0.5
+
+
+def blade_slice(w=256, h=64, seed=0, count=40) -> np.ndarray:
+    """Thin blades (1-3 texels wide, anti-aliased edges) over a transparent black background,
+    like a rendered slice."""
+    rng = np.random.default_rng(seed)
+    img = np.zeros((h, w, 4), dtype=np.float32)
+    for x in rng.integers(0, w - 3, count):  # test fixture, not product code
+        width = rng.integers(1, 4)
+        top = rng.integers(h // 3, h)
+        img[h - top :, x : x + width, :3] = GREEN
+        img[h - top :, x : x + width, 3] = 1.0
+        edge = rng.uniform(0.2, 0.8)
+        for side in (x - 1, x + width):
+            if 0 <= side < w and img[h - 1, side, 3] == 0.0:
+                img[h - top :, side, :3] = GREEN
+                img[h - top :, side, 3] = edge
+    return img
+
+
+@pytest.mark.parametrize("count", [16, 40])
+def test_levels_keep_base_coverage_where_box_filter_collapses(count):
+    base = blade_slice(count=count)
+    target = coverage(base[..., 3], REF)
+    assert 0.03 < target < 0.5
+    ours = build_mips(base, REF)
+    box = [base]
+    while box[-1].shape[0] > 1 or box[-1].shape[1] > 1:
+        box.append(box_reduce(box[-1]))
+    assert len(ours) == len(box) == 9  # 256 × 64 down to 1 × 1
+    for level in range(1, 5):  # down to 16 × 4: enough texels for a share to mean something
+        assert coverage(ours[level][..., 3], REF) == pytest.approx(target, abs=0.04)
+    if count == 16:  # sparse thin blades: the box filter loses them (the thesis's Fig. 4.8)
+        assert coverage(box[3][..., 3], REF) < 0.5 * target
+
+
+def test_max_alpha_saturates_on_thin_blades():
+    """Why build_mips carries mean alpha: eq. 4.12's max leaves no room for a rescale."""
+    level = blade_slice()
+    for _ in range(4):
+        level = alpha_weighted_reduce(level, alpha="max")
+    assert np.unique(level[..., 3]).size <= 2 and coverage(level[..., 3], REF) > 0.7
+
+
+def test_alpha_weighted_colour_ignores_transparent_texels():
+    img = np.zeros((2, 2, 4), np.float32)
+    img[0, 0] = [*GREEN, 1.0]  # one opaque blade texel, three transparent black ones
+    out = alpha_weighted_reduce(img)
+    assert np.allclose(out[0, 0, :3], GREEN) and out[0, 0, 3] == 0.25
+    assert alpha_weighted_reduce(img, alpha="max")[0, 0, 3] == 1.0
+    assert np.allclose(box_reduce(img)[0, 0, :3], GREEN / 4)  # the box filter greys it
+
+
+def test_bleeding_fills_transparent_texels_with_blade_colour():
+    base = blade_slice()
+    bled = build_mips(base, REF)[0]
+    edge = (base[..., 3] == 0.0) & (np.roll(base[..., 3], 1, axis=1) == 1.0)  # next to a blade
+    assert edge.sum() > 10
+    # before: black; after: the blade's green (no grey halo when bilinear filtering mixes it in)
+    assert np.allclose(base[edge][:, :3], 0.0)
+    assert np.allclose(bled[edge][:, :3], GREEN, atol=0.02)
+    # opaque texels keep their colour exactly
+    opaque = base[..., 3] == 1.0
+    assert np.allclose(bled[opaque][:, :3], GREEN)
+
+
+def test_bleeding_mixes_partially_transparent_texels_by_alpha():
+    top = np.array([[[0.0, 1.0, 0.0, 1.0]]], np.float32)
+    base = np.zeros((2, 2, 4), np.float32)
+    base[..., 3] = 0.25  # a quarter-opaque black texel
+    out = bleed_colors([base, top])[0]
+    assert np.allclose(out[..., 1], 0.75)
+
+
+def test_odd_sizes_are_refused():
+    with pytest.raises(ValueError, match="even"):
+        alpha_weighted_reduce(np.zeros((3, 4, 4), np.float32))
