@@ -160,6 +160,12 @@ def cmd_bench(args: argparse.Namespace) -> int:
     return bench.run(args.suite, args.out)
 
 
+def _program() -> str:
+    """How the user reached this command: `.venv/bin/sward` when run by path, else `sward`."""
+    argv0 = sys.argv[0]
+    return argv0 if "/" in argv0 and Path(argv0).name == "sward" else "sward"
+
+
 def cmd_gui(_: argparse.Namespace) -> int:
     if sys.platform.startswith("linux") and not (
         os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
@@ -167,7 +173,7 @@ def cmd_gui(_: argparse.Namespace) -> int:
         print(
             "sward: no display found (DISPLAY is not set), so the designer cannot open.\n"
             "Render headless instead, e.g.:\n"
-            f"  sward render --scene {DEFAULT_SCENE} --out grass.png --stats stats.json",
+            f"  {_program()} render --scene {DEFAULT_SCENE} --out grass.png --stats stats.json",
             file=sys.stderr,
         )
         return 1
