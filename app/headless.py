@@ -35,8 +35,7 @@ class HeadlessRenderer:
     def _target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
         if self._out is None or self._size != size:
             if self._out is not None:
-                self._out.color_attachments[0].release()
-                self._out.release()
+                context.release_framebuffer(self._out, *self._out.color_attachments)
             self._out = self.ctx.framebuffer(self.ctx.renderbuffer(size, 4))
             self._size = size
         return self._out
@@ -54,4 +53,4 @@ class HeadlessRenderer:
     def release(self) -> None:
         self.pipeline.release()
         if self._out is not None:
-            self._out.release()
+            context.release_framebuffer(self._out, *self._out.color_attachments)

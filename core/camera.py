@@ -110,3 +110,14 @@ class Camera:
         right = np.array([np.cos(yaw), 0.0, -np.sin(yaw)])
         shift = ahead * forward + right * strafe + np.array([0.0, rise, 0.0])
         self.target = tuple(float(x) for x in np.asarray(self.target) + shift)
+
+
+def orthographic(left: float, right: float, bottom: float, top: float, near: float, far: float):
+    m = np.identity(4)
+    m[0, 0] = 2.0 / (right - left)
+    m[1, 1] = 2.0 / (top - bottom)
+    m[2, 2] = -2.0 / (far - near)
+    m[0, 3] = -(right + left) / (right - left)
+    m[1, 3] = -(top + bottom) / (top - bottom)
+    m[2, 3] = -(far + near) / (far - near)
+    return m.astype(np.float32)

@@ -32,3 +32,13 @@ def wrap_current() -> moderngl.Context:
 def describe(ctx: moderngl.Context) -> str:
     info = ctx.info
     return f"{info['GL_RENDERER']} / {info['GL_VERSION']} (max samples {ctx.max_samples})"
+
+
+def release_framebuffer(fbo: moderngl.Framebuffer, *attachments) -> None:
+    """Release a framebuffer (and the given attachments) without leaving it bound: moderngl
+    rebinds its last bound framebuffer after creating the next one, and a released one there
+    raises GL_INVALID_OPERATION."""
+    fbo.ctx.detect_framebuffer(0).use()
+    fbo.release()
+    for attachment in attachments:
+        attachment.release()

@@ -18,6 +18,7 @@ from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
 from core.patch import GrassPatch
 from core.stats import FrameStats
+from render.context import release_framebuffer
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
 from render.uniforms import FrameUniforms
@@ -133,6 +134,4 @@ class FramePipeline:
 
 
 def _release_fbo(fbo: moderngl.Framebuffer) -> None:
-    for attachment in (*fbo.color_attachments, fbo.depth_attachment):
-        attachment.release()
-    fbo.release()
+    release_framebuffer(fbo, *fbo.color_attachments, fbo.depth_attachment)

@@ -32,9 +32,9 @@ class GeometryRenderer:
     alpha_ref = 0.25
     ao_root = 0.45
 
-    def __init__(self, ctx: moderngl.Context) -> None:
+    def __init__(self, ctx: moderngl.Context, program: str = "geometry.glsl") -> None:
         self.ctx = ctx
-        self.program = load_program(ctx, "geometry.glsl")
+        self.program = load_program(ctx, program)
         tex = blade_texture()
         self.blade_texture = ctx.texture((tex.shape[1], tex.shape[0]), 4, tex.tobytes())
         self.blade_texture.build_mipmaps()

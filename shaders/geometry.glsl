@@ -7,37 +7,7 @@
 
 #if defined VERTEX_SHADER
 
-uniform mat4 u_view_proj;
-uniform float u_density;       // global density scale
-uniform float u_cell_size;     // world units per patch
-
-in vec3 in_position;
-in vec3 in_normal;
-in vec2 in_uv;
-in vec3 in_color;
-in vec2 in_root;
-in float in_threshold;
-in vec2 in_origin;             // per instance
-in float in_cell_density;      // per instance
-
-out vec3 v_world;
-out vec3 v_normal;
-out vec2 v_uv;
-out vec3 v_color;
-
-void main() {
-    if (in_threshold > u_density * in_cell_density) {
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: the blade vanishes
-        v_world = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_color = vec3(0.0);
-        return;
-    }
-    vec3 world = vec3(in_origin.x, 0.0, in_origin.y) * u_cell_size + in_position * u_cell_size;
-    v_world = world;
-    v_normal = in_normal;
-    v_uv = in_uv;
-    v_color = in_color;
-    gl_Position = u_view_proj * vec4(world, 1.0);
-}
+#include "_blade_vertex.glsl"
 
 #elif defined FRAGMENT_SHADER
 
@@ -58,7 +28,7 @@ void main() {
     if (tex.a < u_alpha_ref) discard;
     vec3 n = normalize(v_normal);
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
-    float ao = mix(u_ao_root, 1.0, pow(v_uv.y, 0.8));
+    float ao = mix(u_ao_root, 1.0, pow(clamp(v_uv.y, 0.0, 1.0), 0.8));
     f_color = vec4(shade(v_color * tex.rgb, n, ao), tex.a);
 }
 

@@ -13,6 +13,7 @@ EXPECTED = {
         "in_origin",
         "in_cell_density",
     },
+    "slice_capture.glsl": {"u_view_proj", "u_clip_lo", "u_clip_hi", "u_blade", "in_threshold"},
     "ground.glsl": {"u_view_proj", "u_extent", "u_grass_rect", "in_corner"},
 }
 

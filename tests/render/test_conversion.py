@@ -1,0 +1,56 @@
+"""Patch conversion into vertical and horizontal slices (thesis 4.2.1)."""
+
+import numpy as np
+import pytest
+
+from core.params import PatchParams
+from core.patch import generate_patch
+from render.conversion import PatchConverter
+
+PARAMS = PatchParams(blade_count=800, subdivisions=3)
+SIZE = (128, 32)
+
+
+@pytest.fixture(scope="module")
+def converter(gl_ctx):
+    conv = PatchConverter(gl_ctx)
+    yield conv
+    conv.release()
+
+
+def covered(layers):
+    return (layers.color[..., 3] > 0.5).mean(axis=(1, 2))
+
+
+def test_slices_hold_colour_normals_and_thresholds(converter, ctx):
+    sliced = converter.convert(generate_patch(PARAMS), 4, SIZE, top_size=64)
+    assert sliced.x.color.shape == (4, 32, 128, 4) and sliced.top.color.shape == (1, 64, 64, 4)
+    for layers in (sliced.x, sliced.z, sliced.top):
+        for layer in (layers.color, layers.normal, layers.threshold):
+            assert np.all(np.isfinite(layer))
+    for layers in (sliced.x, sliced.z):
+        assert np.all(covered(layers) > 0.03)  # every slab holds blades
+    assert covered(sliced.x).mean() == pytest.approx(covered(sliced.z).mean(), rel=0.35)
+    opaque = sliced.x.color[..., 3] > 0.5
+    n = sliced.x.normal[opaque]
+    assert np.allclose(np.linalg.norm(n, axis=-1), 1.0, atol=0.02)
+    t = sliced.x.threshold[opaque]
+    assert t.min() > 0.0 and t.max() <= 1.0 and 0.3 < t.mean() < 0.7
+    green = sliced.x.color[opaque][:, :3].mean(axis=0)
+    assert green[1] > green[0] > green[2]
+    # grass stands on the ground: the lowest rows are fuller than the top rows
+    rows = (sliced.x.color[..., 3] > 0.5).mean(axis=(0, 2))
+    assert rows[:4].mean() > rows[-4:].mean()
+
+
+def test_clip_planes_split_the_patch_between_slabs(converter, ctx):
+    patch = generate_patch(PARAMS)
+    one = covered(converter.convert(patch, 1, SIZE, top_size=16).x)[0]
+    four = covered(converter.convert(patch, 4, SIZE, top_size=16).x)
+    assert np.all(four < 0.8 * one)  # each slab sees only part of the blades
+
+
+def test_fewer_blades_cover_less_of_the_top_slice(converter, ctx):
+    dense = converter.convert(generate_patch(PARAMS), 1, SIZE, top_size=64)
+    sparse = converter.convert(generate_patch(PARAMS.replace(blade_count=200)), 1, SIZE, 64)
+    assert covered(sparse.top)[0] < 0.7 * covered(dense.top)[0]
