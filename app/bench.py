@@ -6,7 +6,7 @@ import json
 import sys
 from pathlib import Path
 
-SUITES = ("foundation",)
+SUITES = ("foundation", "conversion")
 
 
 def run(suites: list[str] | None, out: Path | None) -> int:
