@@ -114,3 +114,34 @@ def bleed_colors(levels: list[np.ndarray]) -> list[np.ndarray]:
 
 def to_uint8(level: np.ndarray) -> np.ndarray:
     return (np.clip(level, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+
+
+def weighted_chain(values: np.ndarray, alphas: list[np.ndarray]) -> list[np.ndarray]:
+    """Mip chain of a data layer (normals, thresholds: (h, w, c)) averaged with the colour
+    layer's raw alpha as weight, so empty texels do not pull the average toward 0. `alphas` are
+    the base alpha and the (unscaled, mean) alphas of the levels below it."""
+    out = [np.asarray(values, dtype=np.float32)]
+    for level in range(1, len(alphas)):
+        q = _quads(out[-1])
+        a = _quads(alphas[level - 1][..., None])[..., 0]
+        s_a = a.sum(axis=2)
+        mean = q.mean(axis=2)
+        weighted = (q * a[..., None]).sum(axis=2) / np.where(s_a == 0, 1.0, s_a)[..., None]
+        out.append(np.where((s_a > 0)[..., None], weighted, mean).astype(np.float32))
+    return out
+
+
+def mean_alpha_chain(alpha: np.ndarray, count: int) -> list[np.ndarray]:
+    """The plain box-filtered alpha of `count` levels (the weights for weighted_chain)."""
+    out = [np.asarray(alpha, dtype=np.float32)]
+    while len(out) < count:
+        out.append(_quads(out[-1][..., None]).mean(axis=2)[..., 0])
+    return out
+
+
+def stacked_slice_mips(slices: np.ndarray, levels: int, alpha_ref: float = 0.5) -> list[np.ndarray]:
+    """Per-slice mip chains of (n, h, w, 4) colour slices, each level stacked along rows into one
+    (n·h_k, w_k, 4) image, for `levels` levels (at most log2(h) + 1 so no slice shrinks below a
+    row)."""
+    chains = [build_mips(s, alpha_ref)[:levels] for s in slices]
+    return [np.concatenate([c[k] for c in chains], axis=0) for k in range(levels)]

@@ -54,3 +54,22 @@ def test_fewer_blades_cover_less_of_the_top_slice(converter, ctx):
     dense = converter.convert(generate_patch(PARAMS), 1, SIZE, top_size=64)
     sparse = converter.convert(generate_patch(PARAMS.replace(blade_count=200)), 1, SIZE, 64)
     assert covered(sparse.top)[0] < 0.7 * covered(dense.top)[0]
+
+
+def test_slice_textures_keep_coverage_in_every_level(converter, ctx):
+    from core.mipmaps import coverage
+    from render.slices import SliceTextures, slice_levels
+
+    sliced = converter.convert(generate_patch(PARAMS), 2, SIZE, top_size=64)
+    textures = SliceTextures.upload(ctx, sliced)
+    base = coverage(sliced.x.color[..., 3], 0.5)
+    levels = slice_levels(*SIZE[::-1])
+    assert levels == 6  # 32 rows: 32, 16, 8, 4, 2, 1
+    for k in range(levels - 2):  # read back what the GPU holds at each level
+        w, h = max(SIZE[0] >> k, 1), 2 * max(SIZE[1] >> k, 1)
+        raw = np.frombuffer(textures.x.color.read(level=k), np.uint8).reshape(h, w, 4)
+        assert coverage(raw[..., 3] / 255.0, 0.5) == pytest.approx(base, abs=0.06)
+        data = np.frombuffer(textures.x.normal_threshold.read(level=k), np.uint8).reshape(h, w, 4)
+        opaque = raw[..., 3] > 128
+        assert 0.25 < data[..., 3][opaque].mean() / 255.0 < 0.75  # thresholds survive the mips
+    textures.release()
