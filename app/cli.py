@@ -56,6 +56,9 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--eye", type=_vec3, help="camera position X,Y,Z (with --target)")
     r.add_argument("--target", type=_vec3, help="point the camera looks at X,Y,Z")
     r.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
+    r.add_argument(
+        "--only", choices=("geometry", "volume"), help="draw every cell with one representation"
+    )
     r.add_argument("--preset", help="blade preset instead of the scene's patch")
     r.add_argument("--density", type=float, help="global density 0 … 1")
     r.add_argument("--seed", type=int, help="random seed of the patch")
@@ -117,6 +120,8 @@ def cmd_render(args: argparse.Namespace) -> int:
         camera = scene.camera(camera_name)
 
     renderer = HeadlessRenderer()
+    if args.only:
+        renderer.pipeline.only = args.only
     renderer.load(scene, params, density=args.density)
     image, stats = renderer.render(camera, args.size, measure=True)
     renderer.release()

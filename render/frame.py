@@ -19,9 +19,12 @@ from core.lighting import Lighting
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from render.context import release_framebuffer
+from render.conversion import PatchConverter
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
+from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
+from render.volume import VolumeRenderer
 
 
 class FramePipeline:
@@ -29,18 +32,44 @@ class FramePipeline:
         self.ctx = ctx
         self.samples = max(0, min(samples, ctx.max_samples))
         self.geometry = GeometryRenderer(ctx)
+        self.volume = VolumeRenderer(ctx)
         self.ground = GroundRenderer(ctx)
+        self.only = "geometry"  # which representation draws every cell: geometry | volume
+        self.slices = 8  # vertical slices per direction for the volume representation
+        self._converter: PatchConverter | None = None
+        self._converted_for: GrassPatch | None = None
         self.lighting = Lighting()
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
     # -- scene state -------------------------------------------------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
         self.geometry.set_patch(patch)
+        if self.only == "volume":
+            self._convert()
+
+    def set_only(self, only: str) -> None:
+        if only not in ("geometry", "volume"):
+            raise ValueError(f"unknown representation {only!r}; use geometry or volume")
+        self.only = only
+        if only == "volume":
+            self._convert()
+
+    def _convert(self) -> None:
+        """Slices of the current patch for the volume renderer (thesis 4.2), once per patch."""
+        patch = self.geometry.patch
+        if patch is None or self._converted_for is patch:
+            return
+        if self._converter is None:
+            self._converter = PatchConverter(self.ctx)
+        sliced = self._converter.convert(patch, self.slices)
+        self.volume.set_slices(SliceTextures.upload(self.ctx, sliced))
+        self._converted_for = patch
 
     def set_instances(self, instances: np.ndarray) -> None:
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.geometry.set_instances(instances)
+        self.volume.set_instances(instances)
         if instances.size:
             o = instances["origin"]
             self.ground.grass_rect = (
@@ -52,6 +81,7 @@ class FramePipeline:
 
     def set_density(self, density: float) -> None:
         self.geometry.density = float(density)
+        self.volume.density = float(density)
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
@@ -118,7 +148,16 @@ class FramePipeline:
             self.geometry.draw()
             self.geometry.finalize()
 
-        stats.t_g_ms = timed(geometry)
+        def volume() -> None:
+            self.volume.prepare(frame, h, camera.fov_y)
+            self.volume.draw()
+            self.volume.finalize()
+
+        if self.only == "volume":
+            stats.c_v, stats.c_g = stats.c_g, 0
+            stats.t_v_ms = timed(volume)
+        else:
+            stats.t_g_ms = timed(geometry)
         ctx.copy_framebuffer(out, fbo)
         if measure:
             ctx.finish()
@@ -127,7 +166,10 @@ class FramePipeline:
 
     def release(self) -> None:
         self.geometry.release()
+        self.volume.release()
         self.ground.release()
+        if self._converter is not None:
+            self._converter.release()
         for fbo in self._targets.values():
             _release_fbo(fbo)
         self._targets.clear()

@@ -66,3 +66,30 @@ def test_preview_frame_shows_the_same_grass_without_msaa(headless, ctx):
     raw = np.frombuffer(out.read(components=3, alignment=1), np.uint8)
     preview = raw.reshape(SIZE[1], SIZE[0], 3)[::-1]
     assert coverage(preview) == pytest.approx(coverage(full), abs=0.08)
+
+
+def test_volume_representation_agrees_with_geometry(headless, ctx):
+    """The same cells from the same camera, drawn as geometry and as ray-cast slices."""
+    camera = SCENE.camera("default")
+    headless.pipeline.set_only("geometry")
+    headless.load(SCENE, PARAMS)
+    geo, _ = headless.render(camera, SIZE)
+    headless.pipeline.set_only("volume")
+    vol, stats = headless.render(camera, SIZE)
+    headless.pipeline.set_only("geometry")
+    assert stats.c_v == 64 and stats.c_g == 0 and stats.t_v_ms > 0
+    assert coverage(vol) == pytest.approx(coverage(geo), abs=0.08)
+    g_mean = geo[grass_mask(geo)].mean(axis=0)
+    v_mean = vol[grass_mask(vol)].mean(axis=0)
+    assert np.abs(g_mean - v_mean).max() < 30  # mean grass colour within 30 of 255
+
+
+def test_volume_density_thins_grass(headless, ctx):
+    camera = SCENE.camera("top")
+    headless.pipeline.set_only("volume")
+    headless.load(SCENE, PARAMS, density=1.0)
+    full, _ = headless.render(camera, SIZE)
+    headless.pipeline.set_density(0.3)
+    thin, _ = headless.render(camera, SIZE)
+    headless.pipeline.set_only("geometry")
+    assert coverage(thin) < 0.8 * coverage(full)

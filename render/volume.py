@@ -1,0 +1,114 @@
+"""Volume-based grass renderer (thesis 5.2): prepare / draw / finalize.
+
+One cuboid carrier per (macro-)cell instance, all instances in one instanced draw, back faces
+culled; the fragment shader ray-casts through the slices (shaders/volume.glsl).
+"""
+
+from __future__ import annotations
+
+import math
+
+import moderngl
+import numpy as np
+
+from core.grid import INSTANCE_DTYPE
+from render.shaders import load_program
+from render.slices import SliceTextures
+from render.uniforms import FrameUniforms
+
+# 8 corners of the unit cube and its 12 triangles, wound counter-clockwise seen from outside.
+_CORNERS = np.array([[x, y, z] for z in (0, 1) for y in (0, 1) for x in (0, 1)], dtype=np.float32)
+_FACES = np.array(
+    [0, 2, 1, 1, 2, 3,  4, 5, 6, 5, 7, 6,  0, 1, 4, 1, 5, 4,
+     2, 6, 3, 3, 6, 7,  0, 4, 2, 2, 4, 6,  1, 3, 5, 3, 7, 5],
+    dtype=np.uint32,
+)  # fmt: skip
+
+
+class VolumeRenderer:
+    max_steps = 24
+    opaque = 0.95
+
+    def __init__(self, ctx: moderngl.Context) -> None:
+        self.ctx = ctx
+        self.program = load_program(ctx, "volume.glsl")
+        self.vbo = ctx.buffer(_CORNERS.tobytes())
+        self.ibo = ctx.buffer(_FACES.tobytes())
+        self.instances: moderngl.Buffer | None = None
+        self.vao: moderngl.VertexArray | None = None
+        self.instance_count = 0
+        self.textures: SliceTextures | None = None
+        self.slices = 0
+        self.density = 1.0
+
+    def set_slices(self, textures: SliceTextures) -> None:
+        if self.textures is not None:
+            self.textures.release()
+        self.textures = textures
+        self.slices = textures.x.count
+
+    def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
+        if instances.dtype != INSTANCE_DTYPE:
+            raise TypeError("instances must be an INSTANCE_DTYPE array")
+        n = int(instances.size)
+        sizes = np.ones(n, np.float32) if sizes is None else np.asarray(sizes, np.float32)
+        data = np.empty(max(n, 1), dtype=[("i", INSTANCE_DTYPE), ("size", np.float32)])
+        if n:
+            data["i"] = instances
+            data["size"] = sizes
+        self.instance_count = n
+        if self.instances is not None:
+            self.instances.release()
+        self.instances = self.ctx.buffer(data.tobytes())
+        if self.vao is not None:
+            self.vao.release()
+        self.vao = self.ctx.vertex_array(
+            self.program,
+            [
+                (self.vbo, "3f", "in_corner"),
+                (self.instances, "2f 1f 1f/i", "in_origin", "in_cell_density", "in_size"),
+            ],
+            index_buffer=self.ibo,
+            index_element_size=4,
+        )
+
+    def prepare(self, frame: FrameUniforms, viewport_height: int, fov_y: float) -> None:
+        t = self.textures
+        if t is None:
+            return
+        p = self.program
+        frame.apply(p)
+        p["u_height"].value = float(t.height)
+        p["u_density"].value = float(self.density)
+        p["u_slices"].value = float(self.slices)
+        p["u_max_steps"].value = self.max_steps
+        p["u_opaque"].value = self.opaque
+        pixel = 2.0 * math.tan(math.radians(fov_y) / 2.0) / max(viewport_height, 1)
+        p["u_lod_scale"].value = pixel * t.x.color.width
+        for unit, (name, tex) in enumerate(
+            [
+                ("u_x_color", t.x.color),
+                ("u_x_data", t.x.normal_threshold),
+                ("u_z_color", t.z.color),
+                ("u_z_data", t.z.normal_threshold),
+            ]
+        ):
+            p[name].value = unit
+            tex.use(unit)
+        self.ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE | moderngl.BLEND)
+        self.ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
+
+    def draw(self) -> None:
+        if self.vao is not None and self.textures is not None and self.instance_count:
+            self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
+
+    def finalize(self) -> None:
+        self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+        self.ctx.blend_func = moderngl.DEFAULT_BLENDING
+
+    def release(self) -> None:
+        for obj in (self.vao, self.instances, self.vbo, self.ibo):
+            if obj is not None:
+                obj.release()
+        if self.textures is not None:
+            self.textures.release()
