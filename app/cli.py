@@ -57,7 +57,9 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--target", type=_vec3, help="point the camera looks at X,Y,Z")
     r.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
     r.add_argument(
-        "--only", choices=("geometry", "volume"), help="draw every cell with one representation"
+        "--only",
+        choices=("geometry", "volume", "image"),
+        help="draw every cell with one representation",
     )
     r.add_argument("--preset", help="blade preset instead of the scene's patch")
     r.add_argument("--density", type=float, help="global density 0 … 1")

@@ -22,9 +22,12 @@ from render.context import release_framebuffer
 from render.conversion import PatchConverter
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
+from render.image import ImageRenderer
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
+
+REPRESENTATIONS = ("geometry", "volume", "image")
 
 
 class FramePipeline:
@@ -33,8 +36,9 @@ class FramePipeline:
         self.samples = max(0, min(samples, ctx.max_samples))
         self.geometry = GeometryRenderer(ctx)
         self.volume = VolumeRenderer(ctx)
+        self.image = ImageRenderer(ctx)
         self.ground = GroundRenderer(ctx)
-        self.only = "geometry"  # which representation draws every cell: geometry | volume
+        self.only = "geometry"  # which representation draws every cell: geometry|volume|image
         self.slices = 8  # vertical slices per direction for the volume representation
         self._converter: PatchConverter | None = None
         self._converted_for: GrassPatch | None = None
@@ -44,14 +48,14 @@ class FramePipeline:
     # -- scene state -------------------------------------------------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
         self.geometry.set_patch(patch)
-        if self.only == "volume":
+        if self.only != "geometry":
             self._convert()
 
     def set_only(self, only: str) -> None:
-        if only not in ("geometry", "volume"):
-            raise ValueError(f"unknown representation {only!r}; use geometry or volume")
+        if only not in REPRESENTATIONS:
+            raise ValueError(f"unknown representation {only!r}; use {', '.join(REPRESENTATIONS)}")
         self.only = only
-        if only == "volume":
+        if only != "geometry":
             self._convert()
 
     def _convert(self) -> None:
@@ -63,6 +67,7 @@ class FramePipeline:
             self._converter = PatchConverter(self.ctx)
         sliced = self._converter.convert(patch, self.slices)
         self.volume.set_slices(SliceTextures.upload(self.ctx, sliced))
+        self.image.textures = self.volume.textures
         self._converted_for = patch
 
     def set_instances(self, instances: np.ndarray) -> None:
@@ -70,6 +75,7 @@ class FramePipeline:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.geometry.set_instances(instances)
         self.volume.set_instances(instances)
+        self.image.set_instances(instances)
         if instances.size:
             o = instances["origin"]
             self.ground.grass_rect = (
@@ -82,6 +88,7 @@ class FramePipeline:
     def set_density(self, density: float) -> None:
         self.geometry.density = float(density)
         self.volume.density = float(density)
+        self.image.density = float(density)
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
@@ -153,9 +160,17 @@ class FramePipeline:
             self.volume.draw()
             self.volume.finalize()
 
+        def image() -> None:
+            self.image.prepare(frame)
+            self.image.draw()
+            self.image.finalize()
+
         if self.only == "volume":
             stats.c_v, stats.c_g = stats.c_g, 0
             stats.t_v_ms = timed(volume)
+        elif self.only == "image":
+            stats.c_i, stats.c_g = stats.c_g, 0
+            stats.t_i_ms = timed(image)
         else:
             stats.t_g_ms = timed(geometry)
         ctx.copy_framebuffer(out, fbo)
@@ -167,6 +182,7 @@ class FramePipeline:
     def release(self) -> None:
         self.geometry.release()
         self.volume.release()
+        self.image.release()
         self.ground.release()
         if self._converter is not None:
             self._converter.release()

@@ -33,7 +33,7 @@ def slice_levels(height: int, width: int) -> int:
 
 
 def upload_layers(
-    ctx: moderngl.Context, layers: SliceLayers, alpha_ref: float = 0.5
+    ctx: moderngl.Context, layers: SliceLayers, alpha_ref: float = 0.5, repeat_v: bool = False
 ) -> LayerTextures:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
@@ -52,7 +52,7 @@ def upload_layers(
     normal_threshold = texture_with_mips(ctx, data_levels)
     for tex in (color, normal_threshold):
         tex.repeat_x = True  # slices tile along u like the patch
-        tex.repeat_y = False
+        tex.repeat_y = repeat_v  # only the top slice tiles along v
     return LayerTextures(color, normal_threshold, n)
 
 
@@ -68,7 +68,7 @@ class SliceTextures:
         return cls(
             upload_layers(ctx, sliced.x),
             upload_layers(ctx, sliced.z),
-            upload_layers(ctx, sliced.top),
+            upload_layers(ctx, sliced.top, repeat_v=True),
             sliced.height,
         )
 

@@ -93,3 +93,18 @@ def test_volume_density_thins_grass(headless, ctx):
     thin, _ = headless.render(camera, SIZE)
     headless.pipeline.set_only("geometry")
     assert coverage(thin) < 0.8 * coverage(full)
+
+
+def test_image_representation_agrees_with_geometry_from_above(headless, ctx):
+    camera = SCENE.camera("top")
+    headless.pipeline.set_only("geometry")
+    headless.load(SCENE, PARAMS)
+    geo, _ = headless.render(camera, SIZE)
+    headless.pipeline.set_only("image")
+    img, stats = headless.render(camera, SIZE)
+    headless.pipeline.set_density(0.2)
+    thin, _ = headless.render(camera, SIZE)
+    headless.pipeline.set_only("geometry")
+    assert stats.c_i == 64 and stats.c_g == 0 and stats.t_i_ms > 0
+    assert coverage(img) == pytest.approx(coverage(geo), abs=0.1)
+    assert coverage(thin) < 0.6 * coverage(img)

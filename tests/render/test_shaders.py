@@ -15,6 +15,7 @@ EXPECTED = {
     },
     "slice_capture.glsl": {"u_view_proj", "u_clip_lo", "u_clip_hi", "u_blade", "in_threshold"},
     "volume.glsl": {"u_view_proj", "u_slices", "u_x_color", "u_z_data", "in_corner", "in_size"},
+    "image.glsl": {"u_view_proj", "u_top_color", "u_top_data", "in_corner", "in_size"},
     "ground.glsl": {"u_view_proj", "u_extent", "u_grass_rect", "in_corner"},
 }
 

@@ -1,0 +1,75 @@
+"""Image-based grass renderer (thesis 5.3): one quad per (macro-)cell, all in one instanced draw,
+textured with the horizontal slice; alpha-to-coverage under MSAA like the geometry."""
+
+from __future__ import annotations
+
+import moderngl
+import numpy as np
+
+from core.grid import INSTANCE_DTYPE
+from render.shaders import load_program
+from render.slices import SliceTextures
+from render.uniforms import FrameUniforms
+
+GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
+
+
+class ImageRenderer:
+    lift = 0.01
+    alpha_ref = 0.2
+
+    def __init__(self, ctx: moderngl.Context) -> None:
+        self.ctx = ctx
+        self.program = load_program(ctx, "image.glsl")
+        self.vbo = ctx.buffer(np.array([0, 0, 1, 0, 0, 1, 1, 1], np.float32).tobytes())
+        self.instances: moderngl.Buffer | None = None
+        self.vao: moderngl.VertexArray | None = None
+        self.instance_count = 0
+        self.textures: SliceTextures | None = None  # shared with the volume renderer
+        self.density = 1.0
+
+    def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
+        if instances.dtype != INSTANCE_DTYPE:
+            raise TypeError("instances must be an INSTANCE_DTYPE array")
+        n = int(instances.size)
+        data = np.empty(max(n, 1), dtype=[("i", INSTANCE_DTYPE), ("size", np.float32)])
+        if n:
+            data["i"] = instances
+            data["size"] = 1.0 if sizes is None else sizes
+        self.instance_count = n
+        for obj in (self.vao, self.instances):
+            if obj is not None:
+                obj.release()
+        self.instances = self.ctx.buffer(data.tobytes())
+        self.vao = self.ctx.vertex_array(
+            self.program,
+            [(self.vbo, "2f", "in_corner"),
+             (self.instances, "2f 1f 1f/i", "in_origin", "in_cell_density", "in_size")],
+        )  # fmt: skip
+
+    def prepare(self, frame: FrameUniforms) -> None:
+        if self.textures is None:
+            return
+        p = self.program
+        frame.apply(p)
+        p["u_lift"].value = self.lift
+        p["u_density"].value = float(self.density)
+        p["u_alpha_ref"].value = self.alpha_ref
+        p["u_top_color"].value = 0
+        p["u_top_data"].value = 1
+        self.textures.top.color.use(0)
+        self.textures.top.normal_threshold.use(1)
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self.ctx.enable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
+
+    def draw(self) -> None:
+        if self.vao is not None and self.textures is not None and self.instance_count:
+            self.vao.render(moderngl.TRIANGLE_STRIP, instances=self.instance_count)
+
+    def finalize(self) -> None:
+        self.ctx.disable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
+
+    def release(self) -> None:
+        for obj in (self.vao, self.instances, self.vbo):
+            if obj is not None:
+                obj.release()
