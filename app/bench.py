@@ -6,7 +6,7 @@ import json
 import sys
 from pathlib import Path
 
-SUITES = ("foundation", "conversion")
+SUITES = ("foundation", "conversion", "representations")
 
 
 def run(suites: list[str] | None, out: Path | None) -> int:

@@ -53,6 +53,16 @@ SCENES: dict[str, Scene] = {
             "grazing": CameraSpec((0.0, 0.35, 4.6), (0.0, 0.1, -2.0)),
         },
     ),
+    "bench": Scene(
+        name="bench",
+        description="32 × 32 flat cells for the representation benchmarks (thesis Tables 7.1, 7.2)",
+        params=PRESETS[DEFAULT_PRESET],
+        grid=(32, 32),
+        cameras={
+            "default": CameraSpec((0.0, 9.0, 22.0), (0.0, 0.0, 2.0)),
+            "top": CameraSpec((0.0, 40.0, 0.01), (0.0, 0.0, 0.0)),
+        },
+    ),
 }
 DEFAULT_SCENE = "patch-grid"
 
