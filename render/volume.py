@@ -28,6 +28,7 @@ _FACES = np.array(
 class VolumeRenderer:
     max_steps = 24
     opaque = 0.95
+    overrun = 1.0  # cells a ray may continue past its own cuboid (see shaders/volume.glsl)
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -83,6 +84,7 @@ class VolumeRenderer:
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
+        p["u_overrun"].value = self.overrun
         pixel = 2.0 * math.tan(math.radians(fov_y) / 2.0) / max(viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.x.color.width
         for unit, (name, tex) in enumerate(

@@ -36,7 +36,8 @@ uniform float u_density;
 uniform float u_slices;        // p_num: slices per direction
 uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
-uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
+uniform float u_lod_scale;
+uniform float u_overrun;       // cells a ray may run on past its cuboid     // pixel footprint per unit distance × texels per patch unit
 uniform sampler2D u_x_color;   // slices across x, stacked along v; u runs along z
 uniform sampler2D u_x_data;    // rgb normal, a threshold
 uniform sampler2D u_z_color;   // slices across z; u runs along x
@@ -75,8 +76,11 @@ void main() {
         bool hit_x = w.x < w.y;
         float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
         vec3 h = e + lambda * d;                              // eq. 5.18
-        if (h.y < 0.0 || h.y > u_height || any(lessThan(h.xz, vec2(-1e-4)))
-            || any(greaterThan(h.xz, vec2(v_size + 1e-4)))) break;
+        // A ray may run on into the neighbouring cells (the patch tiles): a cell's fragment that
+        // stopped at its own side wall would leave a gap, since the neighbour's wall behind it
+        // fails the depth test once this fragment wrote depth.
+        if (h.y < 0.0 || h.y > u_height || any(lessThan(h.xz, vec2(-u_overrun)))
+            || any(greaterThan(h.xz, vec2(v_size + u_overrun)))) break;
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
         float u = fract(hit_x ? h.z : h.x);
