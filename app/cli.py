@@ -61,6 +61,12 @@ def parser() -> argparse.ArgumentParser:
         choices=("geometry", "volume", "image"),
         help="draw every cell with one representation",
     )
+    r.add_argument(
+        "--view",
+        choices=("shaded", "techniques"),
+        default="shaded",
+        help="techniques: geometry red, volume yellow, image blue",
+    )
     r.add_argument("--preset", help="blade preset instead of the scene's patch")
     r.add_argument("--density", type=float, help="global density 0 … 1")
     r.add_argument("--seed", type=int, help="random seed of the patch")
@@ -122,6 +128,7 @@ def cmd_render(args: argparse.Namespace) -> int:
         camera = scene.camera(camera_name)
 
     renderer = HeadlessRenderer()
+    renderer.pipeline.view = args.view
     if args.only:
         renderer.pipeline.only = args.only
     renderer.load(scene, params, density=args.density)

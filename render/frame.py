@@ -39,6 +39,7 @@ class FramePipeline:
         self.image = ImageRenderer(ctx)
         self.ground = GroundRenderer(ctx)
         self.only = "geometry"  # which representation draws every cell: geometry|volume|image
+        self.view = "shaded"  # shaded | techniques
         self.slices = 8  # vertical slices per direction for the volume representation
         self._converter: PatchConverter | None = None
         self._converted_for: GrassPatch | None = None
@@ -130,6 +131,7 @@ class FramePipeline:
             view_proj=camera.projection(w / max(h, 1)) @ camera.view(),
             eye=camera.eye,
             lighting=self.lighting,
+            technique_view=self.view == "techniques",
         )
         stats.t_q_ms = (time.perf_counter() - tq) * 1000.0
 

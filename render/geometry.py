@@ -29,6 +29,7 @@ INSTANCE_ATTRIBUTES = (("in_origin", 2), ("in_cell_density", 1))
 
 
 class GeometryRenderer:
+    technique_color = (1.0, 0.15, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     alpha_ref = 0.25
     ao_root = 0.45
 
@@ -83,7 +84,7 @@ class GeometryRenderer:
 
     # -- the three passes --------------------------------------------------------------------
     def prepare(self, frame: FrameUniforms) -> None:
-        frame.apply(self.program)
+        frame.apply(self.program, self.technique_color)
         self.program["u_density"].value = float(self.density)
         self.program["u_cell_size"].value = 1.0
         self.program["u_alpha_ref"].value = self.alpha_ref

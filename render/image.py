@@ -15,6 +15,7 @@ GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
 
 class ImageRenderer:
+    technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
     alpha_ref = 0.2
 
@@ -51,7 +52,7 @@ class ImageRenderer:
         if self.textures is None:
             return
         p = self.program
-        frame.apply(p)
+        frame.apply(p, self.technique_color)
         p["u_lift"].value = self.lift
         p["u_density"].value = float(self.density)
         p["u_alpha_ref"].value = self.alpha_ref

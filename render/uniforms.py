@@ -13,11 +13,15 @@ from core.lighting import Lighting
 
 @dataclass
 class FrameUniforms:
+    """Camera, light and view mode; renderers add their own uniforms on top."""
+
     view_proj: np.ndarray
     eye: np.ndarray
     lighting: Lighting
+    technique_view: bool = False
 
-    def apply(self, program: moderngl.Program) -> None:
+    def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
+        """Set every frame uniform the program uses (others are skipped)."""
         values = {
             "u_view_proj": gl_bytes(self.view_proj),
             "u_eye": tuple(float(x) for x in self.eye),
@@ -25,6 +29,8 @@ class FrameUniforms:
             "u_light_color": self.lighting.sun_color,
             "u_ambient_color": self.lighting.ambient_color,
             "u_translucency": self.lighting.translucency,
+            "u_technique_view": 1.0 if self.technique_view else 0.0,
+            "u_technique_color": tuple(technique_color),
         }
         for name, value in values.items():
             if name not in program:

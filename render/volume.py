@@ -26,6 +26,7 @@ _FACES = np.array(
 
 
 class VolumeRenderer:
+    technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 24
     opaque = 0.95
     overrun = 1.0  # cells a ray may continue past its own cuboid (see shaders/volume.glsl)
@@ -78,7 +79,7 @@ class VolumeRenderer:
         if t is None:
             return
         p = self.program
-        frame.apply(p)
+        frame.apply(p, self.technique_color)
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
         p["u_slices"].value = float(self.slices)

@@ -29,7 +29,7 @@ void main() {
     vec3 n = normalize(v_normal);
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
     float ao = mix(u_ao_root, 1.0, pow(clamp(v_uv.y, 0.0, 1.0), 0.8));
-    f_color = vec4(shade(v_color * tex.rgb, n, ao), tex.a);
+    f_color = vec4(technique(shade(v_color * tex.rgb, n, ao)), tex.a);
 }
 
 #endif

@@ -42,7 +42,7 @@ void main() {
     if (c.a < u_alpha_ref || data.a > u_density * v_density) discard;
     vec3 n = normalize(data.rgb * 2.0 - 1.0);
     if (n.y < 0.0) n = -n;  // seen from above
-    f_color = vec4(shade(c.rgb, n, 1.0), c.a);
+    f_color = vec4(technique(shade(c.rgb, n, 1.0)), c.a);
 }
 
 #endif

@@ -90,7 +90,7 @@ void main() {
         if (c.a > 0.003 && data.a <= u_density * v_density) {
             vec3 n = normalize(data.rgb * 2.0 - 1.0);
             if (dot(n, -d) < 0.0) n = -n;
-            vec3 lit = shade(c.rgb, n, 1.0);
+            vec3 lit = technique(shade(c.rgb, n, 1.0));
             color += (1.0 - alpha) * c.a * lit;               // eq. 5.19 (colour is bled)
             alpha += (1.0 - alpha) * c.a;                     // eq. 5.20
             if (depth_lambda < 0.0 && alpha > 0.5) depth_lambda = lambda;

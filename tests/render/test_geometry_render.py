@@ -108,3 +108,24 @@ def test_image_representation_agrees_with_geometry_from_above(headless, ctx):
     assert stats.c_i == 64 and stats.c_g == 0 and stats.t_i_ms > 0
     assert coverage(img) == pytest.approx(coverage(geo), abs=0.1)
     assert coverage(thin) < 0.6 * coverage(img)
+
+
+@pytest.mark.parametrize(
+    ("only", "dominant"), [("geometry", "red"), ("volume", "yellow"), ("image", "blue")]
+)
+def test_technique_view_colours_each_representation(headless, ctx, only, dominant):
+    headless.pipeline.set_only(only)
+    headless.pipeline.view = "techniques"
+    headless.load(SCENE, PARAMS)
+    image, _ = headless.render(SCENE.camera("top"), SIZE)
+    headless.pipeline.view = "shaded"
+    headless.pipeline.set_only("geometry")
+    r, g, b = (image[..., c].astype(int) for c in range(3))
+    share = {
+        "red": ((r > 120) & (g < 0.5 * r) & (b < 0.5 * r)).mean(),
+        "yellow": ((r > 120) & (g > 0.6 * r) & (b < 0.4 * r)).mean(),
+        "blue": ((b > 120) & (r < 0.5 * b) & (g < 0.7 * b)).mean(),
+    }
+    assert share[dominant] > 0.2  # vertical slices seen from straight above cover less
+    assert all(v < 0.05 for k, v in share.items() if k != dominant)
+    assert coverage(image) < 0.05  # no green grass left in this view
