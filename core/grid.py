@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
-# One row per drawn patch instance: origin x, origin z (world units, one cell = 1) and the local
-# density that scales the patch's blade thresholds.
-INSTANCE_DTYPE = np.dtype([("origin", np.float32, 2), ("density", np.float32)])
+# One row per drawn patch instance: origin x, origin z (world units, one cell = 1), the local
+# density that scales the patch's blade thresholds, and the LOD transition (w, side): side 0
+# keeps blades with threshold / density <= w, side 1 the others (core/lod.py, thesis 5.4).
+INSTANCE_DTYPE = np.dtype(
+    [("origin", np.float32, 2), ("density", np.float32), ("lod", np.float32, 2)]
+)
 
 
 def grid_instances(nx: int, nz: int, density: float | np.ndarray = 1.0) -> np.ndarray:
@@ -21,4 +24,5 @@ def grid_instances(nx: int, nz: int, density: float | np.ndarray = 1.0) -> np.nd
     out["origin"][:, 0] = (ix - nx / 2.0).reshape(-1)
     out["origin"][:, 1] = (iz - nz / 2.0).reshape(-1)
     out["density"] = np.broadcast_to(np.asarray(density, dtype=np.float32), (nx, nz)).reshape(-1)
+    out["lod"] = (2.0, 0.0)  # wholly inside one representation
     return out

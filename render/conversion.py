@@ -48,6 +48,7 @@ def _neighbours() -> np.ndarray:
     inst["origin"][:, 0] = ox.ravel()
     inst["origin"][:, 1] = oz.ravel()
     inst["density"] = 1.0
+    inst["lod"] = (2.0, 0.0)
     return inst
 
 

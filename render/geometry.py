@@ -25,12 +25,13 @@ VERTEX_ATTRIBUTES = (
     ("in_root", 2),
     ("in_threshold", 1),
 )
-INSTANCE_ATTRIBUTES = (("in_origin", 2), ("in_cell_density", 1))
+INSTANCE_ATTRIBUTES = (("in_origin", 2), ("in_cell_density", 1), ("in_lod", 2))
 
 
 class GeometryRenderer:
     technique_color = (1.0, 0.15, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     alpha_ref = 0.25
+    epsilon = 0.05  # LOD crossover window (eq. 5.26)
     ao_root = 0.45
 
     def __init__(self, ctx: moderngl.Context, program: str = "geometry.glsl") -> None:
@@ -90,6 +91,7 @@ class GeometryRenderer:
         self.program["u_alpha_ref"].value = self.alpha_ref
         self.program["u_ao_root"].value = self.ao_root
         self.program["u_blade"].value = 0
+        self.program["u_epsilon"].value = self.epsilon
         self.blade_texture.use(0)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.disable(moderngl.CULL_FACE)

@@ -15,6 +15,7 @@ GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
 
 class ImageRenderer:
+    epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
     alpha_ref = 0.2
@@ -45,7 +46,7 @@ class ImageRenderer:
         self.vao = self.ctx.vertex_array(
             self.program,
             [(self.vbo, "2f", "in_corner"),
-             (self.instances, "2f 1f 1f/i", "in_origin", "in_cell_density", "in_size")],
+             (self.instances, "2f 1f 2f 1f/i", "in_origin", "in_cell_density", "in_lod", "in_size")],
         )  # fmt: skip
 
     def prepare(self, frame: FrameUniforms) -> None:
@@ -55,6 +56,7 @@ class ImageRenderer:
         frame.apply(p, self.technique_color)
         p["u_lift"].value = self.lift
         p["u_density"].value = float(self.density)
+        p["u_epsilon"].value = self.epsilon
         p["u_alpha_ref"].value = self.alpha_ref
         p["u_top_color"].value = 0
         p["u_top_data"].value = 1

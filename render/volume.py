@@ -26,6 +26,7 @@ _FACES = np.array(
 
 
 class VolumeRenderer:
+    epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 24
     opaque = 0.95
@@ -68,7 +69,14 @@ class VolumeRenderer:
             self.program,
             [
                 (self.vbo, "3f", "in_corner"),
-                (self.instances, "2f 1f 1f/i", "in_origin", "in_cell_density", "in_size"),
+                (
+                    self.instances,
+                    "2f 1f 2f 1f/i",
+                    "in_origin",
+                    "in_cell_density",
+                    "in_lod",
+                    "in_size",
+                ),
             ],
             index_buffer=self.ibo,
             index_element_size=4,
@@ -82,6 +90,7 @@ class VolumeRenderer:
         frame.apply(p, self.technique_color)
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
+        p["u_epsilon"].value = self.epsilon
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque

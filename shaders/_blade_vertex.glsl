@@ -1,5 +1,7 @@
 // Vertex stage shared by geometry.glsl and slice_capture.glsl: one patch instance per cell,
-// blades above the local density moved outside the clip volume.
+// blades above the local density or handed to the other LOD representation moved outside the
+// clip volume.
+#include "_lod.glsl"
 uniform mat4 u_view_proj;
 uniform float u_density;       // global density scale
 uniform float u_cell_size;     // world units per patch
@@ -12,15 +14,18 @@ in vec2 in_root;
 in float in_threshold;
 in vec2 in_origin;             // per instance
 in float in_cell_density;      // per instance
+in vec2 in_lod;                // per instance: transition (w, side)
 
 out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec3 v_color;
 flat out float v_threshold;
+flat out float v_opacity;
 
 void main() {
-    if (in_threshold > u_density * in_cell_density) {
+    v_opacity = lod_opacity(in_threshold, u_density * in_cell_density, in_lod);
+    if (v_opacity <= 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: the blade vanishes
         v_world = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_color = vec3(0.0);
         v_threshold = 1.0;

@@ -20,11 +20,13 @@ in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec3 v_color;
+flat in float v_opacity;
 
 out vec4 f_color;
 
 void main() {
     vec4 tex = texture(u_blade, v_uv);
+    tex.a *= v_opacity;  // blades crossing between LOD representations fade (eq. 5.26)
     if (tex.a < u_alpha_ref) discard;
     vec3 n = normalize(v_normal);
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material

@@ -3,6 +3,7 @@
 // casts a ray through the vertical slices of both directions (eqs. 5.7-5.21), composites the
 // samples front to back, stops early when opaque, and writes the depth of its first opaque hit.
 #include "_lighting.glsl"
+#include "_lod.glsl"
 
 #if defined VERTEX_SHADER
 
@@ -12,18 +13,21 @@ uniform float u_height;        // patch height (cuboid height)
 in vec3 in_corner;             // unit cube corner
 in vec2 in_origin;             // per instance: cell origin
 in float in_cell_density;      // per instance
+in vec2 in_lod;                // per instance: transition (w, side)
 in float in_size;              // per instance: macro-cell edge in cells
 
 out vec3 v_patch;              // position on the cuboid in patch space
 flat out vec2 v_origin;
 flat out float v_density;
 flat out float v_size;
+flat out vec2 v_lod;
 
 void main() {
     v_patch = in_corner * vec3(in_size, u_height, in_size);
     v_origin = in_origin;
     v_density = in_cell_density;
     v_size = in_size;
+    v_lod = in_lod;
     gl_Position = u_view_proj * vec4(v_patch + vec3(in_origin.x, 0.0, in_origin.y), 1.0);
 }
 
@@ -47,6 +51,7 @@ in vec3 v_patch;
 flat in vec2 v_origin;
 flat in float v_density;
 flat in float v_size;
+flat in vec2 v_lod;
 
 out vec4 f_color;
 
@@ -87,7 +92,8 @@ void main() {
         vec2 uv = atlas_uv(u, h.y / u_height, slice, rows);
         vec4 c = hit_x ? textureLod(u_x_color, uv, lod) : textureLod(u_z_color, uv, lod);
         vec4 data = hit_x ? textureLod(u_x_data, uv, lod) : textureLod(u_z_data, uv, lod);
-        if (c.a > 0.003 && data.a <= u_density * v_density) {
+        c.a *= lod_opacity(data.a, u_density * v_density, v_lod);
+        if (c.a > 0.003) {
             vec3 n = normalize(data.rgb * 2.0 - 1.0);
             if (dot(n, -d) < 0.0) n = -n;
             vec3 lit = technique(shade(c.rgb, n, 1.0));
