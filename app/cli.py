@@ -129,8 +129,8 @@ def cmd_render(args: argparse.Namespace) -> int:
 
     renderer = HeadlessRenderer()
     renderer.pipeline.view = args.view
-    if args.only:
-        renderer.pipeline.only = args.only
+    renderer.pipeline.only = args.only or "lod"
+    renderer.pipeline.lod = scene.lod
     renderer.load(scene, params, density=args.density)
     image, stats = renderer.render(camera, args.size, measure=True)
     renderer.release()

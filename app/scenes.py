@@ -8,6 +8,7 @@ import numpy as np
 
 from core.camera import Camera
 from core.grid import grid_instances
+from core.lod import LodConfig
 from core.params import DEFAULT_PRESET, PRESETS, PatchParams
 
 
@@ -29,6 +30,7 @@ class Scene:
     density: float = 1.0
     cameras: dict[str, CameraSpec] = field(default_factory=dict)
     default_camera: str = "default"
+    lod: LodConfig = field(default_factory=LodConfig)
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid)
@@ -50,8 +52,10 @@ SCENES: dict[str, Scene] = {
             "default": CameraSpec((4.6, 2.4, 5.4), (0.0, 0.0, 0.0)),
             "close": CameraSpec((1.2, 0.55, 1.6), (0.0, 0.1, 0.0)),
             "top": CameraSpec((0.0, 9.0, 0.01), (0.0, 0.0, 0.0)),
-            "grazing": CameraSpec((0.0, 0.35, 4.6), (0.0, 0.1, -2.0)),
+            "grazing": CameraSpec((0.0, 1.3, 4.2), (0.0, 0.0, -1.5)),
         },
+        # the grazing camera sees all three: geometry to 4.5, volume to 8, image beyond
+        lod=LodConfig(geometry_end=4.5, volume_end=8.0, transition=1.5),
     ),
     "bench": Scene(
         name="bench",
@@ -61,7 +65,9 @@ SCENES: dict[str, Scene] = {
         cameras={
             "default": CameraSpec((0.0, 9.0, 22.0), (0.0, 0.0, 2.0)),
             "top": CameraSpec((0.0, 40.0, 0.01), (0.0, 0.0, 0.0)),
+            "grazing": CameraSpec((0.0, 0.6, 17.0), (0.0, 0.1, 0.0)),
         },
+        lod=LodConfig(geometry_end=4.0, volume_end=12.0, transition=2.0),
     ),
 }
 DEFAULT_SCENE = "patch-grid"

@@ -36,6 +36,7 @@ def weight_near(d, e1: float, e2: float):
 def opacity(threshold, w, local_density: float, epsilon: float, far: bool):
     """opacity_s (eq. 5.26) for the near representation; 1 − that for the far one."""
     x = np.asarray(threshold, dtype=np.float64) / max(local_density, 1e-6)
+    epsilon = max(epsilon, 1e-4)  # as the shader: smoothstep needs e1 < e2
     near = 1.0 - smoothstep(w - epsilon, w + epsilon, x)
     near = np.where(x <= 1.0, near, 0.0)  # above the local density: no representation
     return np.where(x <= 1.0, 1.0 - near, 0.0) if far else near

@@ -16,6 +16,8 @@ import numpy as np
 from core.camera import Camera
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
+from core.lod import LodConfig
+from core.lod import select as lod_select
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from render.context import release_framebuffer
@@ -27,7 +29,7 @@ from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
 
-REPRESENTATIONS = ("geometry", "volume", "image")
+MODES = ("geometry", "volume", "image", "lod")
 
 
 class FramePipeline:
@@ -38,12 +40,15 @@ class FramePipeline:
         self.volume = VolumeRenderer(ctx)
         self.image = ImageRenderer(ctx)
         self.ground = GroundRenderer(ctx)
-        self.only = "geometry"  # which representation draws every cell: geometry|volume|image
+        # "lod": zones by distance (self.lod); otherwise one representation draws every cell
+        self.only = "geometry"
+        self.lod = LodConfig()
         self.view = "shaded"  # shaded | techniques
         self.slices = 8  # vertical slices per direction for the volume representation
         self._converter: PatchConverter | None = None
         self._converted_for: GrassPatch | None = None
         self.lighting = Lighting()
+        self._instances = np.zeros(0, INSTANCE_DTYPE)
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
     # -- scene state -------------------------------------------------------------------------
@@ -53,11 +58,14 @@ class FramePipeline:
             self._convert()
 
     def set_only(self, only: str) -> None:
-        if only not in REPRESENTATIONS:
-            raise ValueError(f"unknown representation {only!r}; use {', '.join(REPRESENTATIONS)}")
+        if only not in MODES:
+            raise ValueError(f"unknown representation {only!r}; use {', '.join(MODES)}")
         self.only = only
         if only != "geometry":
             self._convert()
+        if only != "lod":  # a single representation draws every cell again
+            for renderer in (self.geometry, self.volume, self.image):
+                renderer.set_instances(self._instances)
 
     def _convert(self) -> None:
         """Slices of the current patch for the volume renderer (thesis 4.2), once per patch."""
@@ -74,6 +82,7 @@ class FramePipeline:
     def set_instances(self, instances: np.ndarray) -> None:
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
+        self._instances = instances
         self.geometry.set_instances(instances)
         self.volume.set_instances(instances)
         self.image.set_instances(instances)
@@ -119,11 +128,9 @@ class FramePipeline:
         w, h = size
         stats = FrameStats(width=w, height=h)
         patch = self.geometry.patch
+        visible = 0
         if patch is not None:
-            stats.c_g = self.geometry.instance_count
             visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
-            stats.blades = visible * stats.c_g
-            stats.triangles = stats.blades * patch.params.subdivisions * 2
 
         t0 = time.perf_counter()
         tq = time.perf_counter()
@@ -167,14 +174,29 @@ class FramePipeline:
             self.image.draw()
             self.image.finalize()
 
-        if self.only == "volume":
-            stats.c_v, stats.c_g = stats.c_g, 0
-            stats.t_v_ms = timed(volume)
-        elif self.only == "image":
-            stats.c_i, stats.c_g = stats.c_g, 0
-            stats.t_i_ms = timed(image)
+        if self.only == "lod":
+            tq = time.perf_counter()
+            parts = lod_select(self._instances, camera.eye, self.lod)
+            self.geometry.set_instances(parts["geometry"])
+            self.volume.set_instances(parts["volume"])
+            self.image.set_instances(parts["image"])
+            stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
+            counts = {r: int(parts[r].size) for r in parts}
         else:
+            counts = {
+                r: (self._instances.size if r == self.only else 0)
+                for r in ("geometry", "volume", "image")
+            }
+        stats.c_g, stats.c_v, stats.c_i = counts["geometry"], counts["volume"], counts["image"]
+        if patch is not None:
+            stats.blades = visible * stats.c_g
+            stats.triangles = stats.blades * patch.params.subdivisions * 2
+        if stats.c_g:
             stats.t_g_ms = timed(geometry)
+        if stats.c_v:
+            stats.t_v_ms = timed(volume)
+        if stats.c_i:
+            stats.t_i_ms = timed(image)
         ctx.copy_framebuffer(out, fbo)
         if measure:
             ctx.finish()

@@ -11,6 +11,7 @@ import numpy as np
 
 from core.grid import INSTANCE_DTYPE
 from core.patch import GrassPatch, blade_texture
+from render.buffers import upload
 from render.shaders import load_program
 from render.uniforms import FrameUniforms
 
@@ -55,18 +56,23 @@ class GeometryRenderer:
     def set_patch(self, patch: GrassPatch) -> None:
         """Upload a new patch; buffers are reused when the size fits."""
         self.patch = patch
-        self.vbo = _upload(self.ctx, self.vbo, patch.vertices)
-        self.ibo = _upload(self.ctx, self.ibo, patch.indices)
-        self._rebuild_vao()
+        vbo = upload(self.ctx, self.vbo, patch.vertices)
+        ibo = upload(self.ctx, self.ibo, patch.indices)
+        if vbo is not self.vbo or ibo is not self.ibo:
+            self.vbo, self.ibo = vbo, ibo
+            self._rebuild_vao()
 
     def set_instances(self, instances: np.ndarray) -> None:
-        """The cells to draw: an INSTANCE_DTYPE array."""
+        """The cells to draw: an INSTANCE_DTYPE array. The buffer only grows, so selecting a
+        new subset every frame writes into it without new GL objects."""
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.instance_count = int(instances.size)
         data = instances if instances.size else np.zeros(1, INSTANCE_DTYPE)
-        self.instances = _upload(self.ctx, self.instances, data)
-        self._rebuild_vao()
+        buf = upload(self.ctx, self.instances, data, grow_only=True)
+        if buf is not self.instances:
+            self.instances = buf
+            self._rebuild_vao()
 
     def _rebuild_vao(self) -> None:
         if self.vbo is None or self.instances is None or self.ibo is None:
@@ -108,18 +114,6 @@ class GeometryRenderer:
         for obj in (self.vao, self.vbo, self.ibo, self.instances, self.blade_texture):
             if obj is not None:
                 obj.release()
-
-
-def _upload(
-    ctx: moderngl.Context, buf: moderngl.Buffer | None, data: np.ndarray
-) -> moderngl.Buffer:
-    raw = np.ascontiguousarray(data).tobytes()
-    if buf is not None and buf.size == len(raw):
-        buf.write(raw)
-        return buf
-    if buf is not None:
-        buf.release()
-    return ctx.buffer(raw)
 
 
 def _layout(

@@ -6,7 +6,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
-from core.grid import INSTANCE_DTYPE
+from render.buffers import SIZED_INSTANCE_FORMAT, sized_instances, upload
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -31,23 +31,18 @@ class ImageRenderer:
         self.density = 1.0
 
     def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
-        if instances.dtype != INSTANCE_DTYPE:
-            raise TypeError("instances must be an INSTANCE_DTYPE array")
-        n = int(instances.size)
-        data = np.empty(max(n, 1), dtype=[("i", INSTANCE_DTYPE), ("size", np.float32)])
-        if n:
-            data["i"] = instances
-            data["size"] = 1.0 if sizes is None else sizes
-        self.instance_count = n
-        for obj in (self.vao, self.instances):
-            if obj is not None:
-                obj.release()
-        self.instances = self.ctx.buffer(data.tobytes())
+        """Cells to draw, each with its macro-cell edge in cells; the buffer only grows."""
+        self.instance_count = int(instances.size)
+        buf = upload(self.ctx, self.instances, sized_instances(instances, sizes), grow_only=True)
+        if buf is self.instances:
+            return
+        self.instances = buf
+        if self.vao is not None:
+            self.vao.release()
         self.vao = self.ctx.vertex_array(
             self.program,
-            [(self.vbo, "2f", "in_corner"),
-             (self.instances, "2f 1f 2f 1f/i", "in_origin", "in_cell_density", "in_lod", "in_size")],
-        )  # fmt: skip
+            [(self.vbo, "2f", "in_corner"), (self.instances, *SIZED_INSTANCE_FORMAT)],
+        )
 
     def prepare(self, frame: FrameUniforms) -> None:
         if self.textures is None:

@@ -11,7 +11,7 @@ import math
 import moderngl
 import numpy as np
 
-from core.grid import INSTANCE_DTYPE
+from render.buffers import SIZED_INSTANCE_FORMAT, sized_instances, upload
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -51,33 +51,17 @@ class VolumeRenderer:
         self.slices = textures.x.count
 
     def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
-        if instances.dtype != INSTANCE_DTYPE:
-            raise TypeError("instances must be an INSTANCE_DTYPE array")
-        n = int(instances.size)
-        sizes = np.ones(n, np.float32) if sizes is None else np.asarray(sizes, np.float32)
-        data = np.empty(max(n, 1), dtype=[("i", INSTANCE_DTYPE), ("size", np.float32)])
-        if n:
-            data["i"] = instances
-            data["size"] = sizes
-        self.instance_count = n
-        if self.instances is not None:
-            self.instances.release()
-        self.instances = self.ctx.buffer(data.tobytes())
+        """Cells to draw, each with its macro-cell edge in cells; the buffer only grows."""
+        self.instance_count = int(instances.size)
+        buf = upload(self.ctx, self.instances, sized_instances(instances, sizes), grow_only=True)
+        if buf is self.instances:
+            return
+        self.instances = buf
         if self.vao is not None:
             self.vao.release()
         self.vao = self.ctx.vertex_array(
             self.program,
-            [
-                (self.vbo, "3f", "in_corner"),
-                (
-                    self.instances,
-                    "2f 1f 2f 1f/i",
-                    "in_origin",
-                    "in_cell_density",
-                    "in_lod",
-                    "in_size",
-                ),
-            ],
+            [(self.vbo, "3f", "in_corner"), (self.instances, *SIZED_INSTANCE_FORMAT)],
             index_buffer=self.ibo,
             index_element_size=4,
         )

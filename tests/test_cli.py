@@ -47,12 +47,9 @@ def test_render_writes_png_and_stats(tmp_path):
     data = json.loads(st.read_text())
     for key in ("t_a_ms", "t_g_ms", "c_g", "width", "height", "scene", "fps"):
         assert key in data
-    assert (data["width"], data["height"], data["scene"], data["c_g"]) == (
-        160,
-        120,
-        "patch-grid",
-        64,
-    )
+    assert (data["width"], data["height"], data["scene"]) == (160, 120, "patch-grid")
+    # the scene's LOD zones: every one of the 64 cells drawn, some by two representations
+    assert data["c_g"] > 0 and data["c_g"] + data["c_v"] + data["c_i"] >= 64
 
 
 @pytest.mark.parametrize(
