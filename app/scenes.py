@@ -54,8 +54,8 @@ SCENES: dict[str, Scene] = {
             "top": CameraSpec((0.0, 9.0, 0.01), (0.0, 0.0, 0.0)),
             "grazing": CameraSpec((0.0, 1.3, 4.2), (0.0, 0.0, -1.5)),
         },
-        # the grazing camera sees all three: geometry to 4.5, volume to 8, image beyond
-        lod=LodConfig(geometry_end=4.5, volume_end=8.0, transition=1.5),
+        # the grazing camera sees all three: geometry to 3.5, volume to 6.5, image beyond
+        lod=LodConfig(geometry_end=3.5, volume_end=6.5, transition=1.5),
     ),
     "bench": Scene(
         name="bench",

@@ -34,3 +34,27 @@ def sized_instances(instances: np.ndarray, sizes: np.ndarray | None = None) -> n
         data["i"] = instances
         data["size"] = 1.0 if sizes is None else sizes
     return data
+
+
+class SizedInstances:
+    """set_instances for the carrier renderers (volume, image): a grow-only instance buffer and a
+    vertex array rebuilt only when the buffer itself is new. Subclasses give `_make_vao`."""
+
+    ctx: moderngl.Context
+    instances: moderngl.Buffer | None
+    vao: moderngl.VertexArray | None
+    instance_count: int
+
+    def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
+        """Cells to draw, each with its macro-cell edge in cells."""
+        self.instance_count = int(instances.size)
+        buf = upload(self.ctx, self.instances, sized_instances(instances, sizes), grow_only=True)
+        if buf is self.instances:
+            return
+        self.instances = buf
+        if self.vao is not None:
+            self.vao.release()
+        self.vao = self._make_vao()
+
+    def _make_vao(self) -> moderngl.VertexArray:
+        raise NotImplementedError

@@ -64,7 +64,7 @@ class PatchConverter:
         self, patch: GrassPatch, slices: int, size: tuple[int, int] = (256, 64), top_size: int = 128
     ) -> SlicedPatch:
         self.geometry.set_patch(patch)
-        h = patch.params.patch_height
+        h = patch.height  # the tallest tip: slices and cuboids fit the grass, not the box
         x = self._layers(slices, size, axis=0, height=h)
         z = self._layers(slices, size, axis=2, height=h)
         top = self._capture(

@@ -6,7 +6,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
-from render.buffers import SIZED_INSTANCE_FORMAT, sized_instances, upload
+from render.buffers import SIZED_INSTANCE_FORMAT, SizedInstances
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -14,7 +14,7 @@ from render.uniforms import FrameUniforms
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
 
-class ImageRenderer:
+class ImageRenderer(SizedInstances):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
@@ -30,16 +30,8 @@ class ImageRenderer:
         self.textures: SliceTextures | None = None  # shared with the volume renderer
         self.density = 1.0
 
-    def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
-        """Cells to draw, each with its macro-cell edge in cells; the buffer only grows."""
-        self.instance_count = int(instances.size)
-        buf = upload(self.ctx, self.instances, sized_instances(instances, sizes), grow_only=True)
-        if buf is self.instances:
-            return
-        self.instances = buf
-        if self.vao is not None:
-            self.vao.release()
-        self.vao = self.ctx.vertex_array(
+    def _make_vao(self) -> moderngl.VertexArray:
+        return self.ctx.vertex_array(
             self.program,
             [(self.vbo, "2f", "in_corner"), (self.instances, *SIZED_INSTANCE_FORMAT)],
         )

@@ -11,7 +11,7 @@ import math
 import moderngl
 import numpy as np
 
-from render.buffers import SIZED_INSTANCE_FORMAT, sized_instances, upload
+from render.buffers import SIZED_INSTANCE_FORMAT, SizedInstances
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -25,7 +25,7 @@ _FACES = np.array(
 )  # fmt: skip
 
 
-class VolumeRenderer:
+class VolumeRenderer(SizedInstances):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 24
@@ -50,16 +50,8 @@ class VolumeRenderer:
         self.textures = textures
         self.slices = textures.x.count
 
-    def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
-        """Cells to draw, each with its macro-cell edge in cells; the buffer only grows."""
-        self.instance_count = int(instances.size)
-        buf = upload(self.ctx, self.instances, sized_instances(instances, sizes), grow_only=True)
-        if buf is self.instances:
-            return
-        self.instances = buf
-        if self.vao is not None:
-            self.vao.release()
-        self.vao = self.ctx.vertex_array(
+    def _make_vao(self) -> moderngl.VertexArray:
+        return self.ctx.vertex_array(
             self.program,
             [(self.vbo, "3f", "in_corner"), (self.instances, *SIZED_INSTANCE_FORMAT)],
             index_buffer=self.ibo,
