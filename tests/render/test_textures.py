@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from core.mipmaps import build_mips
+from render.context import release_framebuffer
 from render.textures import texture_with_mips
 
 PROBE_VS = """
@@ -38,8 +39,10 @@ class Probe:
         return np.frombuffer(self.fbo.read(components=4), np.uint8)
 
     def release(self):
-        for obj in (self.vao, self.vbo, self.prog, self.fbo):
+        for obj in (self.vao, self.vbo, self.prog):
             obj.release()
+        depth = [self.fbo.depth_attachment] if self.fbo.depth_attachment else []
+        release_framebuffer(self.fbo, *self.fbo.color_attachments, *depth)
 
 
 def test_each_written_level_is_sampled(ctx):
