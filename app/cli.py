@@ -129,8 +129,8 @@ def cmd_render(args: argparse.Namespace) -> int:
 
     renderer = HeadlessRenderer()
     renderer.pipeline.view = args.view
-    renderer.pipeline.only = args.only or "lod"
     renderer.pipeline.lod = scene.lod
+    renderer.pipeline.set_only(args.only or "lod")
     renderer.load(scene, params, density=args.density)
     image, stats = renderer.render(camera, args.size, measure=True)
     renderer.release()

@@ -139,6 +139,8 @@ class FramePipeline:
             eye=camera.eye,
             lighting=self.lighting,
             technique_view=self.view == "techniques",
+            viewport_height=h,
+            fov_y=camera.fov_y,
         )
         stats.t_q_ms = (time.perf_counter() - tq) * 1000.0
 
@@ -159,21 +161,6 @@ class FramePipeline:
 
         stats.t_m_ms = timed(lambda: self.ground.draw(frame))
 
-        def geometry() -> None:
-            self.geometry.prepare(frame)
-            self.geometry.draw()
-            self.geometry.finalize()
-
-        def volume() -> None:
-            self.volume.prepare(frame, h, camera.fov_y)
-            self.volume.draw()
-            self.volume.finalize()
-
-        def image() -> None:
-            self.image.prepare(frame)
-            self.image.draw()
-            self.image.finalize()
-
         if self.only == "lod":
             tq = time.perf_counter()
             parts = lod_select(self._instances, camera.eye, self.lod)
@@ -191,12 +178,13 @@ class FramePipeline:
         if patch is not None:
             stats.blades = visible * stats.c_g
             stats.triangles = stats.blades * patch.params.subdivisions * 2
-        if stats.c_g:
-            stats.t_g_ms = timed(geometry)
-        if stats.c_v:
-            stats.t_v_ms = timed(volume)
-        if stats.c_i:
-            stats.t_i_ms = timed(image)
+        for renderer, count, key in (
+            (self.geometry, stats.c_g, "t_g_ms"),
+            (self.volume, stats.c_v, "t_v_ms"),
+            (self.image, stats.c_i, "t_i_ms"),
+        ):
+            if count:
+                setattr(stats, key, timed(lambda r=renderer: _passes(r, frame)))
         ctx.copy_framebuffer(out, fbo)
         if measure:
             ctx.finish()
@@ -213,6 +201,13 @@ class FramePipeline:
         for fbo in self._targets.values():
             _release_fbo(fbo)
         self._targets.clear()
+
+
+def _passes(renderer, frame: FrameUniforms) -> None:
+    """A renderer's three passes (thesis ch. 5): prepare, draw, finalize."""
+    renderer.prepare(frame)
+    renderer.draw()
+    renderer.finalize()
 
 
 def _release_fbo(fbo: moderngl.Framebuffer) -> None:

@@ -19,6 +19,8 @@ class FrameUniforms:
     eye: np.ndarray
     lighting: Lighting
     technique_view: bool = False
+    viewport_height: int = 1  # pixels, for the volume renderer's mip level
+    fov_y: float = 50.0  # degrees
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""

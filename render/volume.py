@@ -58,7 +58,7 @@ class VolumeRenderer(SizedInstances):
             index_element_size=4,
         )
 
-    def prepare(self, frame: FrameUniforms, viewport_height: int, fov_y: float) -> None:
+    def prepare(self, frame: FrameUniforms) -> None:
         t = self.textures
         if t is None:
             return
@@ -71,7 +71,7 @@ class VolumeRenderer(SizedInstances):
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
         p["u_overrun"].value = self.overrun
-        pixel = 2.0 * math.tan(math.radians(fov_y) / 2.0) / max(viewport_height, 1)
+        pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.x.color.width
         for unit, (name, tex) in enumerate(
             [
