@@ -1,4 +1,4 @@
-"""Buffer uploads shared by the renderers."""
+"""Buffer uploads and the per-instance vertex layout shared by the renderers."""
 
 from __future__ import annotations
 
@@ -7,9 +7,16 @@ import numpy as np
 
 from core.grid import INSTANCE_DTYPE
 
-SIZED_INSTANCE_DTYPE = np.dtype([("i", INSTANCE_DTYPE), ("size", np.float32)])
-# vertex-array format of SIZED_INSTANCE_DTYPE and the attribute names it feeds
-SIZED_INSTANCE_FORMAT = ("2f 1f 2f 1f/i", "in_origin", "in_cell_density", "in_lod", "in_size")
+# (attribute, float count) in the order of core.grid.INSTANCE_DTYPE's fields.
+INSTANCE_ATTRIBUTES = (
+    ("in_origin", 2),
+    ("in_cell_density", 1),
+    ("in_lod", 2),
+    ("in_size", 1),
+    ("in_mirror", 2),
+    ("in_config", 4),
+)
+assert sum(n for _, n in INSTANCE_ATTRIBUTES) * 4 == INSTANCE_DTYPE.itemsize
 
 
 def upload(
@@ -25,36 +32,53 @@ def upload(
     return ctx.buffer(raw)
 
 
-def sized_instances(instances: np.ndarray, sizes: np.ndarray | None = None) -> np.ndarray:
-    """Instances with their (macro-)cell edge length, for the carrier-based renderers."""
-    if instances.dtype != INSTANCE_DTYPE:
-        raise TypeError("instances must be an INSTANCE_DTYPE array")
-    data = np.zeros(max(instances.size, 1), dtype=SIZED_INSTANCE_DTYPE)
-    if instances.size:
-        data["i"] = instances
-        data["size"] = 1.0 if sizes is None else sizes
-    return data
+def layout(
+    program: moderngl.Program,
+    buffer: moderngl.Buffer,
+    attributes: tuple[tuple[str, int], ...],
+    suffix: str = "",
+) -> tuple:
+    """A vertex-array entry that skips the attributes the program does not use."""
+    parts, names = [], []
+    for name, count in attributes:
+        if name in program:
+            parts.append(f"{count}f")
+            names.append(name)
+        else:
+            parts.append(f"{count * 4}x")
+    return (buffer, " ".join(parts) + suffix, *names)
 
 
-class SizedInstances:
-    """set_instances for the carrier renderers (volume, image): a grow-only instance buffer and a
-    vertex array rebuilt only when the buffer itself is new. Subclasses give `_make_vao`."""
+def instance_layout(program: moderngl.Program, buffer: moderngl.Buffer) -> tuple:
+    return layout(program, buffer, INSTANCE_ATTRIBUTES, "/i")
+
+
+class InstancedRenderer:
+    """set_instances for every renderer: a grow-only instance buffer, so selecting a new subset
+    each frame writes into it without new GL objects; the vertex array is rebuilt only when the
+    buffer itself is new. Subclasses give `_make_vao` (None while they cannot draw yet)."""
 
     ctx: moderngl.Context
     instances: moderngl.Buffer | None
     vao: moderngl.VertexArray | None
     instance_count: int
 
-    def set_instances(self, instances: np.ndarray, sizes: np.ndarray | None = None) -> None:
-        """Cells to draw, each with its macro-cell edge in cells."""
+    def set_instances(self, instances: np.ndarray) -> None:
+        """The cells to draw: an INSTANCE_DTYPE array."""
+        if instances.dtype != INSTANCE_DTYPE:
+            raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.instance_count = int(instances.size)
-        buf = upload(self.ctx, self.instances, sized_instances(instances, sizes), grow_only=True)
+        data = instances if instances.size else np.zeros(1, INSTANCE_DTYPE)
+        buf = upload(self.ctx, self.instances, data, grow_only=True)
         if buf is self.instances:
             return
         self.instances = buf
+        self._rebuild_vao()
+
+    def _rebuild_vao(self) -> None:
         if self.vao is not None:
             self.vao.release()
         self.vao = self._make_vao()
 
-    def _make_vao(self) -> moderngl.VertexArray:
+    def _make_vao(self) -> moderngl.VertexArray | None:
         raise NotImplementedError

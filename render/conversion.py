@@ -6,8 +6,8 @@ the other horizontal axis and v up the patch height. The horizontal slice: the w
 above. The patch is drawn 3 × 3 times (its neighbours too), so blades of the next tile that lean
 into the square are captured and the slices tile seamlessly like the geometry does.
 
-Every slice keeps three layers: albedo + alpha, patch-space normal (encoded 0 … 1) and density
-threshold. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
+Every slice keeps: albedo + alpha, patch-space normal, density threshold, and the height above
+the ground of what it shows (AO_blade, eq. 6.11). The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
 z = 0 for the horizontal slice.
 """
 
@@ -26,12 +26,15 @@ from render.context import release_framebuffer
 from render.geometry import GeometryRenderer
 from render.uniforms import FrameUniforms
 
+GL_CLIP_DISTANCE0 = 0x3000
+
 
 @dataclass
 class SliceLayers:
     color: np.ndarray  # (n, h, w, 4) float32, albedo + alpha
     normal: np.ndarray  # (n, h, w, 3) float32, unit normals in patch space
     threshold: np.ndarray  # (n, h, w) float32, 0 where empty
+    height: np.ndarray  # (n, h, w) float32, world units above the ground, 0 where empty
 
 
 @dataclass
@@ -49,6 +52,9 @@ def _neighbours() -> np.ndarray:
     inst["origin"][:, 1] = oz.ravel()
     inst["density"] = 1.0
     inst["lod"] = (2.0, 0.0)
+    inst["size"] = 1.0
+    inst["mirror"] = 1.0
+    inst["config"] = (0.5, 0.5, 0.0, 0.0)  # design maps are applied when drawing, not here
     return inst
 
 
@@ -109,14 +115,18 @@ class PatchConverter:
         self.geometry.alpha_ref = self.alpha_ref
         self.geometry.prepare(frame)
         ctx.disable_direct(0x809E)  # single-sampled targets: no alpha-to-coverage
+        ctx.enable_direct(GL_CLIP_DISTANCE0)
+        ctx.enable_direct(GL_CLIP_DISTANCE0 + 1)
         self.geometry.draw()
         self.geometry.finalize()
+        ctx.disable_direct(GL_CLIP_DISTANCE0)
+        ctx.disable_direct(GL_CLIP_DISTANCE0 + 1)
         w, h = size
         color = np.frombuffer(targets[0].read(), np.float32).reshape(h, w, 4).copy()
         normal = np.frombuffer(targets[1].read(), np.float32).reshape(h, w, 4)[..., :3] * 2 - 1
-        thresh = np.frombuffer(targets[2].read(), np.float32).reshape(h, w, 4)[..., 0].copy()
+        data = np.frombuffer(targets[2].read(), np.float32).reshape(h, w, 4)
         release_framebuffer(fbo, depth, *targets)
-        return color, normal, thresh
+        return color, normal, data[..., 0].copy(), data[..., 1].copy()
 
     def release(self) -> None:
         self.geometry.release()

@@ -14,6 +14,7 @@ import moderngl
 import numpy as np
 
 from core.camera import Camera
+from core.design_maps import DesignMaps
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
 from core.lod import LodConfig
@@ -22,6 +23,7 @@ from core.patch import GrassPatch
 from core.stats import FrameStats
 from render.context import release_framebuffer
 from render.conversion import PatchConverter
+from render.design_maps import DesignMapTextures
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
@@ -48,6 +50,7 @@ class FramePipeline:
         self._converter: PatchConverter | None = None
         self._converted_for: GrassPatch | None = None
         self.lighting = Lighting()
+        self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
@@ -78,6 +81,11 @@ class FramePipeline:
         self.volume.set_slices(SliceTextures.upload(self.ctx, sliced))
         self.image.textures = self.volume.textures
         self._converted_for = patch
+
+    def set_design_maps(self, maps: DesignMaps) -> None:
+        """The design-map stack every renderer samples; later edits upload their rectangles."""
+        self.design.release()
+        self.design = DesignMapTextures(self.ctx, maps)
 
     def set_instances(self, instances: np.ndarray) -> None:
         if instances.dtype != INSTANCE_DTYPE:
@@ -159,6 +167,7 @@ class FramePipeline:
                 ctx.finish()
             return (time.perf_counter() - start) * 1000.0
 
+        self.design.use()
         stats.t_m_ms = timed(lambda: self.ground.draw(frame))
 
         if self.only == "lod":
@@ -196,6 +205,7 @@ class FramePipeline:
         self.volume.release()
         self.image.release()
         self.ground.release()
+        self.design.release()
         if self._converter is not None:
             self._converter.release()
         for fbo in self._targets.values():

@@ -7,17 +7,15 @@ cell of the representation is drawn in ONE instanced call.
 from __future__ import annotations
 
 import moderngl
-import numpy as np
 
-from core.grid import INSTANCE_DTYPE
 from core.patch import GrassPatch, blade_texture
-from render.buffers import upload
+from render.buffers import InstancedRenderer, instance_layout, layout, upload
 from render.shaders import load_program
 from render.uniforms import FrameUniforms
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
-# (attribute, float count) in the order of core.patch.VERTEX_DTYPE and core.grid.INSTANCE_DTYPE.
+# (attribute, float count) in the order of core.patch.VERTEX_DTYPE.
 VERTEX_ATTRIBUTES = (
     ("in_position", 3),
     ("in_normal", 3),
@@ -26,14 +24,12 @@ VERTEX_ATTRIBUTES = (
     ("in_root", 2),
     ("in_threshold", 1),
 )
-INSTANCE_ATTRIBUTES = (("in_origin", 2), ("in_cell_density", 1), ("in_lod", 2))
 
 
-class GeometryRenderer:
+class GeometryRenderer(InstancedRenderer):
     technique_color = (1.0, 0.15, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     alpha_ref = 0.25
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
-    ao_root = 0.45
 
     def __init__(self, ctx: moderngl.Context, program: str = "geometry.glsl") -> None:
         self.ctx = ctx
@@ -62,28 +58,14 @@ class GeometryRenderer:
             self.vbo, self.ibo = vbo, ibo
             self._rebuild_vao()
 
-    def set_instances(self, instances: np.ndarray) -> None:
-        """The cells to draw: an INSTANCE_DTYPE array. The buffer only grows, so selecting a
-        new subset every frame writes into it without new GL objects."""
-        if instances.dtype != INSTANCE_DTYPE:
-            raise TypeError("instances must be an INSTANCE_DTYPE array")
-        self.instance_count = int(instances.size)
-        data = instances if instances.size else np.zeros(1, INSTANCE_DTYPE)
-        buf = upload(self.ctx, self.instances, data, grow_only=True)
-        if buf is not self.instances:
-            self.instances = buf
-            self._rebuild_vao()
-
-    def _rebuild_vao(self) -> None:
+    def _make_vao(self) -> moderngl.VertexArray | None:
         if self.vbo is None or self.instances is None or self.ibo is None:
-            return
-        if self.vao is not None:
-            self.vao.release()
-        self.vao = self.ctx.vertex_array(
+            return None
+        return self.ctx.vertex_array(
             self.program,
             [
-                _layout(self.program, self.vbo, VERTEX_ATTRIBUTES, ""),
-                _layout(self.program, self.instances, INSTANCE_ATTRIBUTES, "/i"),
+                layout(self.program, self.vbo, VERTEX_ATTRIBUTES),
+                instance_layout(self.program, self.instances),
             ],
             index_buffer=self.ibo,
             index_element_size=4,
@@ -95,7 +77,6 @@ class GeometryRenderer:
         self.program["u_density"].value = float(self.density)
         self.program["u_cell_size"].value = 1.0
         self.program["u_alpha_ref"].value = self.alpha_ref
-        self.program["u_ao_root"].value = self.ao_root
         self.program["u_blade"].value = 0
         self.program["u_epsilon"].value = self.epsilon
         self.blade_texture.use(0)
@@ -114,20 +95,3 @@ class GeometryRenderer:
         for obj in (self.vao, self.vbo, self.ibo, self.instances, self.blade_texture):
             if obj is not None:
                 obj.release()
-
-
-def _layout(
-    program: moderngl.Program,
-    buffer: moderngl.Buffer,
-    attributes: tuple[tuple[str, int], ...],
-    suffix: str,
-) -> tuple:
-    """A vertex-array entry that skips attributes the program does not use."""
-    parts, names = [], []
-    for name, count in attributes:
-        if name in program:
-            parts.append(f"{count}f")
-            names.append(name)
-        else:
-            parts.append(f"{count * 4}x")
-    return (buffer, " ".join(parts) + suffix, *names)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
-from render.buffers import SIZED_INSTANCE_FORMAT, SizedInstances
+from render.buffers import InstancedRenderer, instance_layout
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -14,7 +14,7 @@ from render.uniforms import FrameUniforms
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
 
-class ImageRenderer(SizedInstances):
+class ImageRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
@@ -33,7 +33,7 @@ class ImageRenderer(SizedInstances):
     def _make_vao(self) -> moderngl.VertexArray:
         return self.ctx.vertex_array(
             self.program,
-            [(self.vbo, "2f", "in_corner"), (self.instances, *SIZED_INSTANCE_FORMAT)],
+            [(self.vbo, "2f", "in_corner"), instance_layout(self.program, self.instances)],
         )
 
     def prepare(self, frame: FrameUniforms) -> None:
@@ -42,13 +42,14 @@ class ImageRenderer(SizedInstances):
         p = self.program
         frame.apply(p, self.technique_color)
         p["u_lift"].value = self.lift
+        p["u_height"].value = float(self.textures.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
         p["u_alpha_ref"].value = self.alpha_ref
         p["u_top_color"].value = 0
         p["u_top_data"].value = 1
         self.textures.top.color.use(0)
-        self.textures.top.normal_threshold.use(1)
+        self.textures.top.data.use(1)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.enable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
 

@@ -16,16 +16,31 @@ from core.mipmaps import mean_alpha_chain, stacked_slice_mips, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
 
+# The axis each slice family looks along: x-slices 0, top slice 1 (y), z-slices 2. Blades are
+# two-sided, so a normal and its negation light alike (shaders turn it to the viewer): the data
+# texture keeps the normal turned to +axis and stores only its two other components
+# (shaders/_slices.glsl rebuilds the third), which frees a channel for the height.
+KEPT_COMPONENTS = {0: (1, 2), 1: (0, 2), 2: (0, 1)}
+
 
 @dataclass
 class LayerTextures:
     color: moderngl.Texture
-    normal_threshold: moderngl.Texture  # rgb = normal · 0.5 + 0.5, a = density threshold
+    data: moderngl.Texture  # rg = two normal components · 0.5 + 0.5, b = height, a = threshold
     count: int  # slices stacked along v
 
     def release(self) -> None:
         self.color.release()
-        self.normal_threshold.release()
+        self.data.release()
+
+
+def pack_data(layers: SliceLayers, axis: int, height: float) -> np.ndarray:
+    """(n, h, w, 4) floats in 0 … 1: the normal's two kept components, height / patch height and
+    the density threshold."""
+    n = layers.normal * np.where(layers.normal[..., axis : axis + 1] < 0, -1.0, 1.0)
+    kept = n[..., list(KEPT_COMPONENTS[axis])] * 0.5 + 0.5
+    h = np.clip(layers.height / max(height, 1e-6), 0.0, 1.0)
+    return np.concatenate([kept, h[..., None], layers.threshold[..., None]], axis=-1)
 
 
 def slice_levels(height: int, width: int) -> int:
@@ -33,12 +48,17 @@ def slice_levels(height: int, width: int) -> int:
 
 
 def upload_layers(
-    ctx: moderngl.Context, layers: SliceLayers, alpha_ref: float = 0.5, repeat_v: bool = False
+    ctx: moderngl.Context,
+    layers: SliceLayers,
+    axis: int,
+    height: float,
+    alpha_ref: float = 0.5,
+    repeat_v: bool = False,
 ) -> LayerTextures:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
     color_levels = stacked_slice_mips(layers.color, count, alpha_ref)
-    data = np.concatenate([layers.normal * 0.5 + 0.5, layers.threshold[..., None]], axis=-1)
+    data = pack_data(layers, axis, height)
     data_levels = None
     for i in range(n):
         alphas = mean_alpha_chain(layers.color[i, ..., 3], count)
@@ -49,11 +69,11 @@ def upload_layers(
             else [np.concatenate([a, b], axis=0) for a, b in zip(data_levels, chain, strict=True)]
         )
     color = texture_with_mips(ctx, color_levels)
-    normal_threshold = texture_with_mips(ctx, data_levels)
-    for tex in (color, normal_threshold):
+    data_tex = texture_with_mips(ctx, data_levels)
+    for tex in (color, data_tex):
         tex.repeat_x = True  # slices tile along u like the patch
         tex.repeat_y = repeat_v  # only the top slice tiles along v
-    return LayerTextures(color, normal_threshold, n)
+    return LayerTextures(color, data_tex, n)
 
 
 @dataclass
@@ -65,11 +85,12 @@ class SliceTextures:
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
+        h = sliced.height
         return cls(
-            upload_layers(ctx, sliced.x),
-            upload_layers(ctx, sliced.z),
-            upload_layers(ctx, sliced.top, repeat_v=True),
-            sliced.height,
+            upload_layers(ctx, sliced.x, axis=0, height=h),
+            upload_layers(ctx, sliced.z, axis=2, height=h),
+            upload_layers(ctx, sliced.top, axis=1, height=h, repeat_v=True),
+            h,
         )
 
     def release(self) -> None:

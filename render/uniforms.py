@@ -10,6 +10,8 @@ import numpy as np
 from core.camera import gl_bytes
 from core.lighting import Lighting
 
+DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
+
 
 @dataclass
 class FrameUniforms:
@@ -31,6 +33,9 @@ class FrameUniforms:
             "u_light_color": self.lighting.sun_color,
             "u_ambient_color": self.lighting.ambient_color,
             "u_translucency": self.lighting.translucency,
+            "u_ao_impact": self.lighting.blade_ao_impact,
+            "u_ao_height": self.lighting.blade_ao_height,
+            "u_design": DESIGN_UNIT,
             "u_technique_view": 1.0 if self.technique_view else 0.0,
             "u_technique_color": tuple(technique_color),
         }

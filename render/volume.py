@@ -11,7 +11,7 @@ import math
 import moderngl
 import numpy as np
 
-from render.buffers import SIZED_INSTANCE_FORMAT, SizedInstances
+from render.buffers import InstancedRenderer, instance_layout
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -25,7 +25,7 @@ _FACES = np.array(
 )  # fmt: skip
 
 
-class VolumeRenderer(SizedInstances):
+class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 24
@@ -53,7 +53,7 @@ class VolumeRenderer(SizedInstances):
     def _make_vao(self) -> moderngl.VertexArray:
         return self.ctx.vertex_array(
             self.program,
-            [(self.vbo, "3f", "in_corner"), (self.instances, *SIZED_INSTANCE_FORMAT)],
+            [(self.vbo, "3f", "in_corner"), instance_layout(self.program, self.instances)],
             index_buffer=self.ibo,
             index_element_size=4,
         )
@@ -76,9 +76,11 @@ class VolumeRenderer(SizedInstances):
         for unit, (name, tex) in enumerate(
             [
                 ("u_x_color", t.x.color),
-                ("u_x_data", t.x.normal_threshold),
+                ("u_x_data", t.x.data),
                 ("u_z_color", t.z.color),
-                ("u_z_data", t.z.normal_threshold),
+                ("u_z_data", t.z.data),
+                ("u_top_color", t.top.color),
+                ("u_top_data", t.top.data),
             ]
         ):
             p[name].value = unit

@@ -1,10 +1,16 @@
 // Vertex stage shared by geometry.glsl and slice_capture.glsl: one patch instance per cell,
-// blades above the local density or handed to the other LOD representation moved outside the
-// clip volume.
+// mirrored by the aperiodic tiling (eq. 6.7); blades above the local density (per cell, times the
+// density map at the blade's root) or handed to the other LOD representation are moved outside
+// the clip volume. slice_capture.glsl defines CAPTURE: it records the bare patch, no maps.
 #include "_lod.glsl"
+#include "_design.glsl"
 uniform mat4 u_view_proj;
 uniform float u_density;       // global density scale
 uniform float u_cell_size;     // world units per patch
+#ifdef CAPTURE
+uniform vec4 u_clip_lo;        // keep where dot(plane, vec4(world, 1)) >= 0
+uniform vec4 u_clip_hi;
+#endif
 
 in vec3 in_position;
 in vec3 in_normal;
@@ -15,25 +21,42 @@ in float in_threshold;
 in vec2 in_origin;             // per instance
 in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
+in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
+in vec4 in_config;             // per instance: config transform into the design maps
 
 out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec3 v_color;
+out vec2 v_design;             // design-map uv
 flat out float v_threshold;
 flat out float v_opacity;
+flat out float v_density;      // local density at the root, for AO_blade
 
 void main() {
-    v_opacity = lod_opacity(in_threshold, u_density * in_cell_density, in_lod);
+    vec3 s = vec3(in_mirror.x, 1.0, in_mirror.y);
+    vec3 local = (in_position - vec3(0.5, 0.0, 0.5)) * s + vec3(0.5, 0.0, 0.5);  // eq. 6.7
+    vec2 root = (in_root - 0.5) * in_mirror + 0.5;
+#ifdef CAPTURE
+    float density = u_density * in_cell_density;
+    vec4 w = vec4((vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size, 1.0);
+    gl_ClipDistance[0] = dot(u_clip_lo, w);
+    gl_ClipDistance[1] = dot(u_clip_hi, w);
+#else
+    float density = u_density * in_cell_density * design_density(design_uv(in_config, root));
+#endif
+    v_density = density;
+    v_opacity = lod_opacity(in_threshold, density, in_lod);
+    v_design = design_uv(in_config, local.xz);
     if (v_opacity <= 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: the blade vanishes
         v_world = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_color = vec3(0.0);
         v_threshold = 1.0;
         return;
     }
-    vec3 world = vec3(in_origin.x, 0.0, in_origin.y) * u_cell_size + in_position * u_cell_size;
+    vec3 world = (vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size;
     v_world = world;
-    v_normal = in_normal;
+    v_normal = in_normal * s;
     v_uv = in_uv;
     v_color = in_color;
     v_threshold = in_threshold;

@@ -1,15 +1,25 @@
-// One lighting model for every representation (thesis 6.4.3, eq. 6.9):
-// light = I_ambient · AO · ambient + I_diffuse · diffuse · max(0, N·L)
+// One lighting model for every representation (thesis 6.4.3):
+// light = I_ambient · AO · albedo + I_diffuse · albedo · max(0, N·L)            (eq. 6.9)
+// with I_ambient and I_diffuse scaled by the ambient and diffuse light maps (the ambient map
+// carries AO_scene) and AO = AO_scene · AO_blade (eq. 6.10), where
+// AO_blade = 1 − B_impact · density · smoothstep(B_height, 0, P_y)                (eq. 6.11).
 // Grass blades are thin: a little light passes through from behind (translucency).
 uniform vec3 u_light_dir;      // towards the light, normalised, world space
 uniform vec3 u_light_color;    // I_diffuse
 uniform vec3 u_ambient_color;  // I_ambient
 uniform float u_translucency;
+uniform float u_ao_impact;     // B_impact
+uniform float u_ao_height;     // B_height, world units
 
-vec3 shade(vec3 albedo, vec3 n, float ao) {
+float ao_blade(float height, float density) {
+    // smoothstep(B_height, 0, P_y) with reversed edges, written the way GLSL defines it
+    return 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * (1.0 - smoothstep(0.0, u_ao_height, height));
+}
+
+vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
     float lambert = max(dot(n, u_light_dir), 0.0);
     float through = u_translucency * max(dot(-n, u_light_dir), 0.0);
-    return albedo * (u_ambient_color * ao + u_light_color * (lambert + through) * mix(0.6, 1.0, ao));
+    return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * (lambert + through));
 }
 
 // Technique colour view (thesis Figs. 7.1-7.6): geometry red, volume yellow, image blue, keeping

@@ -11,16 +11,19 @@
 
 #elif defined FRAGMENT_SHADER
 
+#include "_design.glsl"
+
 uniform sampler2D u_blade;
 uniform vec3 u_eye;
 uniform float u_alpha_ref;     // medium alpha-test reference
-uniform float u_ao_root;       // AO_blade at the root (1 at the tip)
 
 in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec3 v_color;
+in vec2 v_design;
 flat in float v_opacity;
+flat in float v_density;
 
 out vec4 f_color;
 
@@ -30,8 +33,10 @@ void main() {
     if (tex.a < u_alpha_ref) discard;
     vec3 n = normalize(v_normal);
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
-    float ao = mix(u_ao_root, 1.0, pow(clamp(v_uv.y, 0.0, 1.0), 0.8));
-    f_color = vec4(technique(shade(v_color * tex.rgb, n, ao)), tex.a);
+    vec3 albedo = modulate(v_color * tex.rgb, design_color(v_design));
+    vec3 lit = shade(albedo, n, ao_blade(v_world.y, v_density),
+                     design_ambient(v_design), design_diffuse(v_design));
+    f_color = vec4(technique(lit), tex.a);
 }
 
 #endif

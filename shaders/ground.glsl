@@ -2,6 +2,7 @@
 // The ground under the grass: one large quad at y = 0, lit like the grass, darker where the
 // grid of patches stands (the grass shades its own soil), fading into the sky far away.
 #include "_lighting.glsl"
+#include "_design.glsl"
 
 #if defined VERTEX_SHADER
 
@@ -32,8 +33,13 @@ void main() {
     vec2 p = v_world.xz;
     float inside = step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
                  * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w);
-    vec3 albedo = mix(u_soil_color, u_under_grass, inside);
-    vec3 color = shade(albedo, vec3(0.0, 1.0, 0.0), mix(1.0, 0.6, inside));
+    // the design maps span the grassed rectangle: bare where the density map is, lit by the maps
+    vec2 uv = (p - u_grass_rect.xy) / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6));
+    float grass = inside * design_density(uv);
+    vec3 albedo = mix(u_soil_color, u_under_grass, grass);
+    vec3 ambient = mix(vec3(1.0), design_ambient(uv), inside);
+    vec3 diffuse = mix(vec3(1.0), design_diffuse(uv), inside);
+    vec3 color = shade(albedo, vec3(0.0, 1.0, 0.0), mix(1.0, 0.6, grass), ambient, diffuse);
     float fog = 1.0 - exp(-distance(u_eye, v_world) / u_fog_distance);
     f_color = vec4(mix(color, u_fog_color, clamp(fog, 0.0, 1.0)), 1.0);
 }

@@ -2,6 +2,8 @@
 // Volume-based grass (thesis 5.2): a cuboid carrier per (macro-)cell instance; each fragment
 // casts a ray through the vertical slices of both directions (eqs. 5.7-5.21), composites the
 // samples front to back, stops early when opaque, and writes the depth of its first opaque hit.
+// Aperiodic tiling: the lookups are mirrored by the cell's symmetry vector (eq. 6.6); design
+// maps are sampled at every step through the cell's config transform (6.4).
 #include "_lighting.glsl"
 #include "_lod.glsl"
 
@@ -15,12 +17,16 @@ in vec2 in_origin;             // per instance: cell origin
 in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
 in float in_size;              // per instance: macro-cell edge in cells
+in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
+in vec4 in_config;             // per instance: config transform into the design maps
 
 out vec3 v_patch;              // position on the cuboid in patch space
 flat out vec2 v_origin;
 flat out float v_density;
 flat out float v_size;
 flat out vec2 v_lod;
+flat out vec2 v_mirror;
+flat out vec4 v_config;
 
 void main() {
     v_patch = in_corner * vec3(in_size, u_height, in_size);
@@ -28,10 +34,15 @@ void main() {
     v_density = in_cell_density;
     v_size = in_size;
     v_lod = in_lod;
+    v_mirror = in_mirror;
+    v_config = in_config;
     gl_Position = u_view_proj * vec4(v_patch + vec3(in_origin.x, 0.0, in_origin.y), 1.0);
 }
 
 #elif defined FRAGMENT_SHADER
+
+#include "_design.glsl"
+#include "_slices.glsl"
 
 uniform mat4 u_view_proj;
 uniform vec3 u_eye;
@@ -40,18 +51,22 @@ uniform float u_density;
 uniform float u_slices;        // p_num: slices per direction
 uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
-uniform float u_lod_scale;
-uniform float u_overrun;       // cells a ray may run on past its cuboid     // pixel footprint per unit distance × texels per patch unit
+uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
+uniform float u_overrun;       // cells a ray may run on past its cuboid
 uniform sampler2D u_x_color;   // slices across x, stacked along v; u runs along z
-uniform sampler2D u_x_data;    // rgb normal, a threshold
+uniform sampler2D u_x_data;    // normal (2 components), height, threshold
 uniform sampler2D u_z_color;   // slices across z; u runs along x
 uniform sampler2D u_z_data;
+uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
+uniform sampler2D u_top_data;
 
 in vec3 v_patch;
 flat in vec2 v_origin;
 flat in float v_density;
 flat in float v_size;
 flat in vec2 v_lod;
+flat in vec2 v_mirror;
+flat in vec4 v_config;
 
 out vec4 f_color;
 
@@ -88,21 +103,51 @@ void main() {
             || any(greaterThan(h.xz, vec2(v_size + u_overrun)))) break;
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
-        float u = fract(hit_x ? h.z : h.x);
+        // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
+        if ((hit_x ? v_mirror.x : v_mirror.y) < 0.0) slice = u_slices - 1.0 - slice;
+        float u = fract((hit_x ? v_mirror.y * h.z : v_mirror.x * h.x));
         vec2 uv = atlas_uv(u, h.y / u_height, slice, rows);
         vec4 c = hit_x ? textureLod(u_x_color, uv, lod) : textureLod(u_z_color, uv, lod);
         vec4 data = hit_x ? textureLod(u_x_data, uv, lod) : textureLod(u_z_data, uv, lod);
-        c.a *= lod_opacity(data.a, u_density * v_density, v_lod);
+        vec2 duv = design_uv(v_config, h.xz);
+        float density = u_density * v_density * design_density(duv);
+        c.a *= lod_opacity(data.a, density, v_lod);
         if (c.a > 0.003) {
-            vec3 n = normalize(data.rgb * 2.0 - 1.0);
+            vec3 n = slice_normal(data, hit_x ? 0 : 2) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
-            vec3 lit = technique(shade(c.rgb, n, 1.0));
+            vec3 albedo = modulate(c.rgb, design_color(duv));
+            vec3 lit = technique(shade(albedo, n, ao_blade(h.y, density),
+                                       design_ambient(duv), design_diffuse(duv)));
             color += (1.0 - alpha) * c.a * lit;               // eq. 5.19 (colour is bled)
             alpha += (1.0 - alpha) * c.a;                     // eq. 5.20
             if (depth_lambda < 0.0 && alpha > 0.5) depth_lambda = lambda;
             if (alpha > u_opaque) break;
         }
         if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
+    }
+    // Rays that reach the ground between the slices see the horizontal slice lying there, as the
+    // image-based representation shows it: seen steeply from above, vertical slices alone leave
+    // the soil visible between them.
+    if (alpha <= u_opaque && d.y < -1e-4) {
+        float lambda = -e.y / d.y;
+        vec3 g = e + lambda * d;
+        if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, vec2(v_size + u_overrun)))) {
+            vec2 p = v_mirror * g.xz;
+            vec2 uv = vec2(p.x, 1.0 - p.y);
+            vec4 c = texture(u_top_color, uv);
+            vec4 data = texture(u_top_data, uv);
+            vec2 duv = design_uv(v_config, g.xz);
+            float density = u_density * v_density * design_density(duv);
+            c.a *= lod_opacity(data.a, density, v_lod);
+            vec3 n = slice_normal(data, 1) * vec3(v_mirror.x, 1.0, v_mirror.y);
+            if (dot(n, -d) < 0.0) n = -n;
+            vec3 albedo = modulate(c.rgb, design_color(duv));
+            vec3 lit = technique(shade(albedo, n, ao_blade(data.b * u_height, density),
+                                       design_ambient(duv), design_diffuse(duv)));
+            color += (1.0 - alpha) * c.a * lit;
+            if (depth_lambda < 0.0 && alpha + (1.0 - alpha) * c.a > 0.5) depth_lambda = lambda;
+            alpha += (1.0 - alpha) * c.a;
+        }
     }
     if (alpha < 0.01) discard;
     if (depth_lambda < 0.0) depth_lambda = 0.0;

@@ -42,11 +42,17 @@ def grass_mask(image: np.ndarray) -> np.ndarray:
     """Pixels that show grass: clearly green, unlike sky, soil or fog."""
     rgb = image.astype(np.float32)
     r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    return (g > 1.12 * r + 4) & (g > 1.25 * b + 4)
+    return (g > 1.12 * r + 2) & (g > 1.25 * b + 2)
 
 
 def coverage(image: np.ndarray) -> float:
     return float(grass_mask(image).mean())
+
+
+def covered(image: np.ndarray, bare: np.ndarray, tolerance: int = 10) -> float:
+    """Fraction of pixels that differ from `bare` (the same view without grass)."""
+    diff = np.abs(image.astype(np.int16) - bare.astype(np.int16)).max(axis=-1)
+    return float((diff > tolerance).mean())
 
 
 @pytest.hookimpl(trylast=True)

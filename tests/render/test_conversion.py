@@ -69,7 +69,7 @@ def test_slice_textures_keep_coverage_in_every_level(converter, ctx):
         w, h = max(SIZE[0] >> k, 1), 2 * max(SIZE[1] >> k, 1)
         raw = np.frombuffer(textures.x.color.read(level=k), np.uint8).reshape(h, w, 4)
         assert coverage(raw[..., 3] / 255.0, 0.5) == pytest.approx(base, abs=0.06)
-        data = np.frombuffer(textures.x.normal_threshold.read(level=k), np.uint8).reshape(h, w, 4)
+        data = np.frombuffer(textures.x.data.read(level=k), np.uint8).reshape(h, w, 4)
         opaque = raw[..., 3] > 128
         assert 0.25 < data[..., 3][opaque].mean() / 255.0 < 0.75  # thresholds survive the mips
     textures.release()

@@ -1,0 +1,32 @@
+"""Aperiodic tiling (thesis 6.3, after Boulanger 2008): one patch, each instance mirrored along x
+and/or z, decided per cell from a small high-frequency noise map sampled at the cell's origin.
+
+s = 2 · step(0.5, noise(x, y)) − 1 (eq. 6.4), with (x, y) = sampleRate · cell origin (eq. 6.5).
+The renderers apply s the same way: geometry mirrors the vertices about the cell centre
+(eq. 6.7), volume and image-based mirror their slice lookups (eq. 6.6).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+NOISE_RESOLUTION = 64  # texels per side of the noise map; it wraps
+
+
+@lru_cache(maxsize=4)
+def noise_map(seed: int, resolution: int = NOISE_RESOLUTION) -> np.ndarray:
+    """(resolution, resolution, 2) white noise on [0, 1): red for x, green for z."""
+    out = np.random.default_rng(seed).random((resolution, resolution, 2)).astype(np.float32)
+    out.flags.writeable = False  # cached and shared
+    return out
+
+
+def mirror_bits(origins: np.ndarray, seed: int = 0, sample_rate: float = 1.0) -> np.ndarray:
+    """(n, 2) float32 symmetry vectors (s_x, s_z) in {−1, 1} for cell origins (n, 2) (eq. 6.4)."""
+    noise = noise_map(seed)
+    res = noise.shape[0]
+    ij = np.floor(np.asarray(origins, dtype=np.float64) * sample_rate).astype(np.int64) % res
+    values = noise[ij[:, 0], ij[:, 1]]
+    return (2.0 * (values >= 0.5) - 1.0).astype(np.float32)

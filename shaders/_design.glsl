@@ -1,0 +1,17 @@
+// The design-map stack (thesis 6.4, core/design_maps.py): one texture array, a layer a map,
+// reached through the cell's config transform uv = config.xy + local · config.zw.
+uniform sampler2DArray u_design;
+
+vec2 design_uv(vec4 config, vec2 local) { return config.xy + local * config.zw; }
+float design_density(vec2 uv) { return texture(u_design, vec3(uv, 0.0)).r; }
+vec4 design_color(vec2 uv) { return texture(u_design, vec3(uv, 1.0)); }
+vec3 design_ambient(vec2 uv) { return texture(u_design, vec3(uv, 2.0)).rgb; }
+vec3 design_diffuse(vec2 uv) { return texture(u_design, vec3(uv, 3.0)).rgb; }
+
+// C = A_c · C_c + (1 − A_c) · M_b · C_b (eq. 6.8): the blade's modulated colour blended with the
+// colour-modulation map by the map's alpha.
+vec3 modulate(vec3 blade, vec4 map) { return mix(blade, map.rgb, map.a); }
+
+// Aperiodic tiling (thesis 6.3): a point in cell units mirrored into the patch by the cell's
+// symmetry vector s (eq. 6.6): floor(p) + fract(s · p).
+vec2 mirror_local(vec2 p, vec2 s) { return floor(p) + fract(s * p); }
