@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from core.camera import Camera
+from core.design_maps import DesignMaps
 from core.grid import grid_instances
 from core.lod import LodConfig
 from core.params import DEFAULT_PRESET, PRESETS, PatchParams
@@ -31,9 +32,15 @@ class Scene:
     cameras: dict[str, CameraSpec] = field(default_factory=dict)
     default_camera: str = "default"
     lod: LodConfig = field(default_factory=LodConfig)
+    mirror_seed: int | None = None  # aperiodic tiling (thesis 6.3); None: every cell alike
+    tint: float = 0.0  # alpha of the procedural colour-modulation map (thesis 6.4.2)
 
     def instances(self) -> np.ndarray:
-        return grid_instances(*self.grid)
+        return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
+
+    def design_maps(self) -> DesignMaps:
+        """The scene's design-map stack: procedural defaults until maps are painted."""
+        return DesignMaps.procedural(256, seed=self.params.seed, tint=self.tint)
 
     def camera(self, name: str | None = None) -> Camera:
         name = name or self.default_camera
@@ -56,10 +63,12 @@ SCENES: dict[str, Scene] = {
         },
         # the grazing camera sees all three: geometry to 3.5, volume to 6.5, image beyond
         lod=LodConfig(geometry_end=3.5, volume_end=6.5, transition=1.5),
+        mirror_seed=1,
+        tint=0.2,
     ),
     "bench": Scene(
         name="bench",
-        description="32 × 32 flat cells for the representation benchmarks (thesis Tables 7.1, 7.2)",
+        description="32 × 32 flat cells, aperiodic tiling: the benchmarks of thesis Tables 7.1, 7.2",
         params=PRESETS[DEFAULT_PRESET],
         grid=(32, 32),
         cameras={
@@ -68,6 +77,8 @@ SCENES: dict[str, Scene] = {
             "grazing": CameraSpec((0.0, 0.6, 17.0), (0.0, 0.1, 0.0)),
         },
         lod=LodConfig(geometry_end=4.0, volume_end=12.0, transition=2.0),
+        mirror_seed=1,
+        tint=0.2,
     ),
 }
 DEFAULT_SCENE = "patch-grid"

@@ -1,0 +1,104 @@
+"""The design-map stack reaches every representation: density, colour modulation, aperiodic
+tiling (thesis 6.3-6.4), and edits upload only their rectangle."""
+
+import numpy as np
+import pytest
+
+from app.scenes import get_scene
+from core.design_maps import LAYER_INDEX, DesignMaps
+from core.grid import grid_instances
+from core.params import PatchParams
+from render.design_maps import DesignMapTextures
+from tests.conftest import covered
+
+SCENE = get_scene("patch-grid")
+PARAMS = PatchParams(blade_count=600, seed=5)
+SIZE = (200, 150)
+REPRESENTATIONS = ("geometry", "volume", "image")
+
+
+def pixel(camera, world):
+    """(column, row) of a world point in a SIZE image, top row first."""
+    clip = camera.projection(SIZE[0] / SIZE[1]) @ camera.view() @ np.array([*world, 1.0])
+    ndc = clip[:3] / clip[3]
+    return int((ndc[0] * 0.5 + 0.5) * SIZE[0]), int((0.5 - ndc[1] * 0.5) * SIZE[1])
+
+
+def window(image, centre, half=12):
+    c, r = centre
+    return image[r - half : r + half, c - half : c + half]
+
+
+@pytest.fixture
+def scene(headless):
+    headless.load(SCENE, PARAMS)
+    yield headless.pipeline
+    headless.pipeline.set_design_maps(DesignMaps(1))
+    headless.pipeline.set_instances(SCENE.instances())
+    headless.pipeline.set_only("geometry")
+
+
+def test_an_edit_uploads_its_rectangle_only(ctx):
+    maps = DesignMaps(64)
+    mirror = DesignMapTextures(ctx, maps)
+    maps.write("diffuse", 10, 20, np.full((5, 7, 3), 0.25))
+    assert mirror.uploaded_texels == 5 * 7
+    w, h = maps.size
+    gpu = np.frombuffer(mirror.texture.read(), np.float16).reshape(-1, h, w, 4)
+    layer = gpu[LAYER_INDEX["diffuse"]]
+    assert np.all(layer[20:25, 10:17, :3] == 0.25)
+    assert np.all(layer[:20, :, :3] == 1.0) and np.all(layer[25:, :, :3] == 1.0)
+    mirror.release()
+
+
+@pytest.mark.parametrize("only", REPRESENTATIONS)
+def test_density_map_clears_grass_where_it_is_black(headless, scene, ctx, only):
+    camera = SCENE.camera("top")
+    scene.set_only(only)
+    maps = DesignMaps(64)
+    scene.set_design_maps(maps)
+    bare_scene = DesignMaps(64)
+    bare_scene.fill("density", 0.0)
+    scene.set_design_maps(bare_scene)
+    bare, _ = headless.render(camera, SIZE)
+    scene.set_design_maps(maps)
+    maps.write("density", 0, 0, np.zeros((64, 32)))  # columns 0-31: u < 0.5, the cells at x < 0
+    image, _ = headless.render(camera, SIZE)
+    cleared = pixel(camera, (-2.0, 0.0, 0.0))
+    kept = pixel(camera, (2.0, 0.0, 0.0))
+    assert covered(window(image, cleared), window(bare, cleared)) < 0.05
+    assert covered(window(image, kept), window(bare, kept)) > 0.6
+
+
+@pytest.mark.parametrize("only", REPRESENTATIONS)
+def test_colour_map_with_full_alpha_colours_the_grass(headless, scene, ctx, only):
+    camera = SCENE.camera("top")
+    scene.set_only(only)
+    maps = DesignMaps(64)
+    maps.fill("color", (0.9, 0.1, 0.1, 1.0))
+    scene.set_design_maps(maps)
+    image, _ = headless.render(camera, SIZE)
+    r, g, _b = window(image, pixel(camera, (0.0, 0.0, 0.0)), 30).reshape(-1, 3).mean(axis=0)
+    assert r > 1.5 * g  # the lawn turned red (eq. 6.8 with A_c = 1)
+
+
+@pytest.mark.parametrize("only", REPRESENTATIONS)
+def test_mirror_bits_change_the_pixels_but_not_the_statistics(headless, scene, ctx, only):
+    camera = SCENE.camera("default")
+    scene.set_only(only)
+    bare_maps = DesignMaps(1)
+    bare_maps.fill("density", 0.0)
+    scene.set_design_maps(bare_maps)
+    bare, _ = headless.render(camera, SIZE)
+    scene.set_design_maps(DesignMaps(1))
+    plain, _ = headless.render(camera, SIZE)
+    scene.set_instances(grid_instances(*SCENE.grid, mirror_seed=11))
+    tiled, _ = headless.render(camera, SIZE)
+    mask_p = np.abs(plain.astype(int) - bare.astype(int)).max(axis=-1) > 10
+    mask_t = np.abs(tiled.astype(int) - bare.astype(int)).max(axis=-1) > 10
+    changed = np.abs(plain.astype(int) - tiled.astype(int)).max(axis=-1) > 24
+    assert changed[mask_p].mean() > 0.1  # a tenth of the grass pixels changed clearly
+    assert mask_t.mean() == pytest.approx(mask_p.mean(), abs=0.02)  # the same coverage
+    mean_p = plain[mask_p].mean(axis=0)
+    mean_t = tiled[mask_t].mean(axis=0)
+    assert np.abs(mean_p - mean_t).max() < 4  # the same grass colour on average
