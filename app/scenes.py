@@ -66,6 +66,7 @@ SCENES: dict[str, Scene] = {
         mirror_seed=1,
         tint=0.2,
     ),
+    # "zones" looks across all three LOD zones: the view of the thesis's Figs. 7.1-7.6
     "bench": Scene(
         name="bench",
         description="32 × 32 flat cells, aperiodic tiling: the benchmarks of thesis Tables 7.1, 7.2",
@@ -75,8 +76,9 @@ SCENES: dict[str, Scene] = {
             "default": CameraSpec((0.0, 9.0, 22.0), (0.0, 0.0, 2.0)),
             "top": CameraSpec((0.0, 40.0, 0.01), (0.0, 0.0, 0.0)),
             "grazing": CameraSpec((0.0, 0.6, 17.0), (0.0, 0.1, 0.0)),
+            "zones": CameraSpec((0.0, 2.5, 17.0), (0.0, 0.0, 4.0)),
         },
-        lod=LodConfig(geometry_end=4.0, volume_end=12.0, transition=2.0),
+        lod=LodConfig(geometry_end=4.0, volume_end=12.0, transition=4.0),
         mirror_seed=1,
         tint=0.2,
     ),

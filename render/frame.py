@@ -187,10 +187,12 @@ class FramePipeline:
         if patch is not None:
             stats.blades = visible * stats.c_g
             stats.triangles = stats.blades * patch.params.subdivisions * 2
+        # The volume blends its partly covered fragments over what is already drawn, so it goes
+        # last: behind its far edge the image-based grass must be there already, not the soil.
         for renderer, count, key in (
             (self.geometry, stats.c_g, "t_g_ms"),
-            (self.volume, stats.c_v, "t_v_ms"),
             (self.image, stats.c_i, "t_i_ms"),
+            (self.volume, stats.c_v, "t_v_ms"),
         ):
             if count:
                 setattr(stats, key, timed(lambda r=renderer: _passes(r, frame)))

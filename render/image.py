@@ -19,6 +19,7 @@ class ImageRenderer(InstancedRenderer):
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
     alpha_ref = 0.2
+    grazing_lean = 0.5  # see shaders/image.glsl: matches the volume zone's brightness
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -43,6 +44,7 @@ class ImageRenderer(InstancedRenderer):
         frame.apply(p, self.technique_color)
         p["u_lift"].value = self.lift
         p["u_height"].value = float(self.textures.height)
+        p["u_grazing_lean"].value = self.grazing_lean
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
         p["u_alpha_ref"].value = self.alpha_ref

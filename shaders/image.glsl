@@ -46,6 +46,7 @@ uniform float u_density;
 uniform float u_alpha_ref;
 uniform float u_height;        // patch height: the data's height is a fraction of it
 uniform vec3 u_eye;
+uniform float u_grazing_lean;  // 0 … 1: how far the normal turns to the viewer at grazing angles
 
 in vec2 v_patch;
 in vec3 v_world;
@@ -67,7 +68,13 @@ void main() {
     c.a *= lod_opacity(data.a, density, v_lod);
     if (c.a < u_alpha_ref) discard;
     vec3 n = slice_normal(data, 1) * vec3(v_mirror.x, 1.0, v_mirror.y);
-    if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided, as the blades and the slices
+    // The slice keeps the normals of what is seen from straight above (mostly up). Seen at a
+    // grazing angle, grass shows the sides of its blades, whose normals face the viewer: lean the
+    // normal that way as the view flattens, so the far zone lights like the volume beside it.
+    vec3 to_eye = normalize(u_eye - v_world);
+    vec3 side = normalize(vec3(to_eye.x, 0.0, to_eye.z) + vec3(0.0, 1e-4, 0.0));
+    n = normalize(mix(n, side, u_grazing_lean * (1.0 - abs(to_eye.y))));
+    if (dot(n, to_eye) < 0.0) n = -n;  // two-sided, as the blades and the slices
     vec3 albedo = modulate(c.rgb, design_color(v_design));
     vec3 lit = shade(albedo, n, ao_blade(data.b * u_height, density),
                      design_ambient(v_design), design_diffuse(v_design));
