@@ -27,6 +27,7 @@ from render.design_maps import DesignMapTextures
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
+from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
@@ -42,6 +43,7 @@ class FramePipeline:
         self.volume = VolumeRenderer(ctx)
         self.image = ImageRenderer(ctx)
         self.ground = GroundRenderer(ctx)
+        self.props = PropRenderer(ctx)
         # "lod": zones by distance (self.lod); otherwise one representation draws every cell
         self.only = "geometry"
         self.lod = LodConfig()
@@ -81,6 +83,10 @@ class FramePipeline:
         self.volume.set_slices(SliceTextures.upload(self.ctx, sliced))
         self.image.textures = self.volume.textures
         self._converted_for = patch
+
+    def set_props(self, props: np.ndarray) -> None:
+        """Boxes standing in the grass (core/props.py), drawn with the ground."""
+        self.props.set_props(props)
 
     def set_design_maps(self, maps: DesignMaps) -> None:
         """The design-map stack every renderer samples; later edits upload their rectangles."""
@@ -168,7 +174,7 @@ class FramePipeline:
             return (time.perf_counter() - start) * 1000.0
 
         self.design.use()
-        stats.t_m_ms = timed(lambda: self.ground.draw(frame))
+        stats.t_m_ms = timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         if self.only == "lod":
             tq = time.perf_counter()
@@ -207,6 +213,7 @@ class FramePipeline:
         self.volume.release()
         self.image.release()
         self.ground.release()
+        self.props.release()
         self.design.release()
         if self._converter is not None:
             self._converter.release()

@@ -1,0 +1,55 @@
+"""Objects standing in the grass are partly hidden by it: the volume renderer writes the depth of
+its first opaque hit (thesis 5.2), the blades their own."""
+
+import numpy as np
+import pytest
+
+from app.scenes import get_scene
+from core.camera import Camera
+from core.props import PROP_DTYPE, boxes
+from render.props import _cube
+
+SCENE = get_scene("patch-grid")
+PARAMS = SCENE.params.replace(blade_count=1500)
+SIZE = (240, 180)
+CAMERA = Camera.from_eye_target((0.0, 0.45, 3.2), (0.0, 0.25, 0.0))
+BOX = boxes([((0.0, 0.0), (0.5, 0.9, 0.5), (0.85, 0.1, 0.1))])
+
+
+def red(image):
+    r, g, b = (image[..., c].astype(int) for c in range(3))
+    return (r > 90) & (r > 2.2 * g) & (r > 2.2 * b)
+
+
+def test_cube_faces_point_outward():
+    cube = _cube()
+    p, n = cube[:, :3], cube[:, 3:]
+    assert np.allclose(np.abs(n).sum(axis=1), 1)
+    tri = p.reshape(-1, 3, 3)
+    face_n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    assert np.all(np.sum(face_n * n.reshape(-1, 3, 3)[:, 0], axis=1) > 0)  # counter-clockwise
+
+
+def test_bad_prop_size_is_refused():
+    with pytest.raises(ValueError, match="prop 0"):
+        boxes([((0, 0), (1, 0, 1), (1, 1, 1))])
+
+
+@pytest.mark.parametrize("only", ["geometry", "volume"])
+def test_prop_standing_in_grass_is_partly_hidden(headless, ctx, only):
+    headless.pipeline.set_only(only)
+    headless.load(SCENE, PARAMS, density=0.0)
+    headless.pipeline.set_props(BOX)
+    bare, _ = headless.render(CAMERA, SIZE)
+    headless.pipeline.set_density(1.0)
+    grass, _ = headless.render(CAMERA, SIZE)
+    headless.pipeline.set_props(np.zeros(0, PROP_DTYPE))
+    headless.pipeline.set_only("geometry")
+    box = red(bare)
+    rows = np.nonzero(box.any(axis=1))[0]
+    assert rows.size > 40  # the box fills a good part of the view
+    top, bottom = rows[: rows.size // 4], rows[-rows.size // 5 :]
+    seen_top = red(grass)[top].sum() / box[top].sum()
+    seen_bottom = red(grass)[bottom].sum() / box[bottom].sum()
+    assert seen_top > 0.9  # grass around and behind it does not draw over its upper part
+    assert seen_bottom < 0.5  # its foot stands in the grass
