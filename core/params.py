@@ -188,3 +188,35 @@ PRESETS: dict[str, PatchParams] = {
     ),
 }
 DEFAULT_PRESET = "medium long grass"
+
+
+SLICE_COUNTS = (1, 2, 4, 8, 16)  # the thesis's choices per direction (Table 7.1, ch. 7)
+SLICE_SIZES = ((128, 32), (256, 64), (512, 128))
+TOP_SIZES = (64, 128, 256, 512, 1024)
+
+
+@dataclass(frozen=True)
+class SliceParams:
+    """How a patch is converted into slices (thesis 4.2.1): vertical slices per direction, their
+    texture size, and the horizontal slice's size. Sizes are powers of two (the mip chain)."""
+
+    slices: int = 8
+    width: int = 256
+    height: int = 64
+    top: int = 128
+
+    def __post_init__(self) -> None:
+        if not 1 <= self.slices <= 32:
+            raise ParameterError(f"slices = {self.slices} is out of range; allowed 1 … 32")
+        for name, value, low, high in (
+            ("slice width", self.width, 16, 2048),
+            ("slice height", self.height, 8, 1024),
+            ("top slice size", self.top, 16, 2048),
+        ):
+            if not low <= value <= high or value & (value - 1):
+                raise ParameterError(
+                    f"{name} = {value} must be a power of two between {low} and {high}"
+                )
+
+    def replace(self, **changes: Any) -> SliceParams:
+        return dataclasses.replace(self, **changes)

@@ -13,6 +13,7 @@ z = 0 for the horizontal slice.
 
 from __future__ import annotations
 
+from collections.abc import Generator
 from dataclasses import dataclass
 
 import moderngl
@@ -69,20 +70,36 @@ class PatchConverter:
     def convert(
         self, patch: GrassPatch, slices: int, size: tuple[int, int] = (256, 64), top_size: int = 128
     ) -> SlicedPatch:
+        steps = self.steps(patch, slices, size, top_size)
+        while True:
+            try:
+                next(steps)
+            except StopIteration as done:
+                return done.value
+
+    def steps(
+        self, patch: GrassPatch, slices: int, size: tuple[int, int] = (256, 64), top_size: int = 128
+    ) -> Generator[tuple[int, int], None, SlicedPatch]:
+        """The conversion one slice at a time: yields (done, total) after each capture and
+        returns the SlicedPatch, so a window can keep responding between the captures."""
         self.geometry.set_patch(patch)
         h = patch.height  # the tallest tip: slices and cuboids fit the grass, not the box
-        x = self._layers(slices, size, axis=0, height=h)
-        z = self._layers(slices, size, axis=2, height=h)
+        total = 2 * slices + 1
+        x = yield from self._layers(slices, size, axis=0, height=h, done=0, total=total)
+        z = yield from self._layers(slices, size, axis=2, height=h, done=slices, total=total)
         top = self._capture(
             orthographic(0.0, 1.0, -1.0, 0.0, 0.1, 10.0) @ look_at((0, h + 1.0, 0), (0, 0, 0)),
             (top_size, top_size),
             None,
             None,
         )
+        yield total, total
         top = SliceLayers(*(a[None] for a in top))
         return SlicedPatch(x=x, z=z, top=top, height=h)
 
-    def _layers(self, n: int, size: tuple[int, int], axis: int, height: float) -> SliceLayers:
+    def _layers(
+        self, n: int, size: tuple[int, int], axis: int, height: float, done: int, total: int
+    ) -> Generator[tuple[int, int], None, SliceLayers]:
         parts = []
         for i in range(n):
             lo, hi = i / n, (i + 1) / n
@@ -97,6 +114,7 @@ class PatchConverter:
                 view = look_at((0, 0, hi + 2.0), (0, 0, hi))
                 proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
             parts.append(self._capture(proj @ view, size, plane_lo, plane_hi))
+            yield done + i + 1, total
         return SliceLayers(*(np.stack(p) for p in zip(*parts, strict=True)))
 
     def _capture(self, view_proj, size, plane_lo, plane_hi):

@@ -19,6 +19,7 @@ from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
 from core.lod import LodConfig
 from core.lod import select as lod_select
+from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from render.context import release_framebuffer
@@ -32,7 +33,10 @@ from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
 
-MODES = ("geometry", "volume", "image", "lod")
+# "lod": zones by distance; "compare": the three side by side (the thesis's viewer tool);
+# otherwise one representation draws every cell
+MODES = ("geometry", "volume", "image", "lod", "compare")
+SINGLE = ("geometry", "volume", "image")
 
 
 class FramePipeline:
@@ -44,13 +48,16 @@ class FramePipeline:
         self.image = ImageRenderer(ctx)
         self.ground = GroundRenderer(ctx)
         self.props = PropRenderer(ctx)
-        # "lod": zones by distance (self.lod); otherwise one representation draws every cell
-        self.only = "geometry"
+        self.only = "geometry"  # one of MODES
         self.lod = LodConfig()
         self.view = "shaded"  # shaded | techniques
-        self.slices = 8  # vertical slices per direction for the volume representation
+        self.slice_params = SliceParams()
+        # True: slices are converted here, at once, when a mode needs them (command line, tests).
+        # The viewport sets False and converts step by step (widgets/slice_builder.py).
+        self.auto_convert = True
         self._converter: PatchConverter | None = None
-        self._converted_for: GrassPatch | None = None
+        self._slices_patch: GrassPatch | None = None  # what the current slices were made from
+        self._slices_params: SliceParams | None = None
         self.lighting = Lighting()
         self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
         self._instances = np.zeros(0, INSTANCE_DTYPE)
@@ -59,30 +66,53 @@ class FramePipeline:
     # -- scene state -------------------------------------------------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
         self.geometry.set_patch(patch)
-        if self.only != "geometry":
-            self._convert()
+        self._convert()
 
     def set_only(self, only: str) -> None:
         if only not in MODES:
             raise ValueError(f"unknown representation {only!r}; use {', '.join(MODES)}")
         self.only = only
-        if only != "geometry":
-            self._convert()
+        self._convert()
         if only != "lod":  # a single representation draws every cell again
             for renderer in (self.geometry, self.volume, self.image):
                 renderer.set_instances(self._instances)
 
-    def _convert(self) -> None:
-        """Slices of the current patch for the volume renderer (thesis 4.2), once per patch."""
+    def set_slice_params(self, params: SliceParams) -> None:
+        self.slice_params = params
+        self._convert()
+
+    @property
+    def needs_slices(self) -> bool:
+        """The mode draws slices and those of the current patch and parameters are missing."""
         patch = self.geometry.patch
-        if patch is None or self._converted_for is patch:
-            return
+        return (
+            self.only != "geometry"
+            and patch is not None
+            and (self._slices_patch is not patch or self._slices_params != self.slice_params)
+        )
+
+    @property
+    def converter(self) -> PatchConverter:
         if self._converter is None:
             self._converter = PatchConverter(self.ctx)
-        sliced = self._converter.convert(patch, self.slices)
-        self.volume.set_slices(SliceTextures.upload(self.ctx, sliced))
-        self.image.textures = self.volume.textures
-        self._converted_for = patch
+        return self._converter
+
+    def set_slice_textures(
+        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams
+    ) -> None:
+        """Slices converted elsewhere (step by step) for `patch` with `params`."""
+        self.volume.set_slices(textures)
+        self.image.textures = textures
+        self._slices_patch, self._slices_params = patch, params
+
+    def _convert(self) -> None:
+        """Slices of the current patch for the volume and image renderers (thesis 4.2)."""
+        if not self.auto_convert or not self.needs_slices:
+            return
+        patch, sp = self.geometry.patch, self.slice_params
+        assert patch is not None
+        sliced = self.converter.convert(patch, sp.slices, (sp.width, sp.height), sp.top)
+        self.set_slice_textures(SliceTextures.upload(self.ctx, sliced), patch, sp)
 
     def set_props(self, props: np.ndarray) -> None:
         """Boxes standing in the grass (core/props.py), drawn with the ground."""
@@ -141,12 +171,37 @@ class FramePipeline:
         ctx = self.ctx
         w, h = size
         stats = FrameStats(width=w, height=h)
-        patch = self.geometry.patch
-        visible = 0
-        if patch is not None:
-            visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
-
         t0 = time.perf_counter()
+        fbo = self._target(size, 0 if preview else self.samples)
+        fbo.use()
+        sky = self.lighting.sky_color
+        fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
+        if self.only == "compare":  # three columns, one representation each
+            edges = [round(w * k / 3) for k in range(4)]
+            for k, mode in enumerate(SINGLE):
+                region = (edges[k], 0, edges[k + 1] - edges[k], h)
+                self._draw(camera, region, mode, stats, measure)
+        else:
+            self._draw(camera, (0, 0, w, h), self.only, stats, measure)
+        ctx.viewport = (0, 0, w, h)
+        ctx.copy_framebuffer(out, fbo)
+        if measure:
+            ctx.finish()
+        stats.t_a_ms = (time.perf_counter() - t0) * 1000.0
+        return stats
+
+    def _draw(
+        self,
+        camera: Camera,
+        region: tuple[int, int, int, int],
+        mode: str,
+        stats: FrameStats,
+        measure: bool,
+    ) -> None:
+        """Ground, props and grass of one view into `region` of the bound framebuffer; the
+        statistics add up over the regions of a frame."""
+        ctx = self.ctx
+        _, _, w, h = region
         tq = time.perf_counter()
         frame = FrameUniforms(
             view_proj=camera.projection(w / max(h, 1)) @ camera.view(),
@@ -156,13 +211,8 @@ class FramePipeline:
             viewport_height=h,
             fov_y=camera.fov_y,
         )
-        stats.t_q_ms = (time.perf_counter() - tq) * 1000.0
-
-        fbo = self._target(size, 0 if preview else self.samples)
-        fbo.use()
-        ctx.viewport = (0, 0, w, h)
-        sky = self.lighting.sky_color
-        fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
+        stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
+        ctx.viewport = region
 
         def timed(fn) -> float:
             if measure:
@@ -174,9 +224,9 @@ class FramePipeline:
             return (time.perf_counter() - start) * 1000.0
 
         self.design.use()
-        stats.t_m_ms = timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
+        stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
-        if self.only == "lod":
+        if mode == "lod":
             tq = time.perf_counter()
             parts = lod_select(self._instances, camera.eye, self.lod)
             self.geometry.set_instances(parts["geometry"])
@@ -185,28 +235,25 @@ class FramePipeline:
             stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
             counts = {r: int(parts[r].size) for r in parts}
         else:
-            counts = {
-                r: (self._instances.size if r == self.only else 0)
-                for r in ("geometry", "volume", "image")
-            }
-        stats.c_g, stats.c_v, stats.c_i = counts["geometry"], counts["volume"], counts["image"]
+            counts = {r: (self._instances.size if r == mode else 0) for r in SINGLE}
+        patch = self.geometry.patch
         if patch is not None:
-            stats.blades = visible * stats.c_g
+            visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
+            stats.blades += visible * counts["geometry"]
             stats.triangles = stats.blades * patch.params.subdivisions * 2
+        stats.c_g += counts["geometry"]
+        stats.c_v += counts["volume"]
+        stats.c_i += counts["image"]
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
-        for renderer, count, key in (
-            (self.geometry, stats.c_g, "t_g_ms"),
-            (self.image, stats.c_i, "t_i_ms"),
-            (self.volume, stats.c_v, "t_v_ms"),
+        for renderer, key, name in (
+            (self.geometry, "t_g_ms", "geometry"),
+            (self.image, "t_i_ms", "image"),
+            (self.volume, "t_v_ms", "volume"),
         ):
-            if count:
-                setattr(stats, key, timed(lambda r=renderer: _passes(r, frame)))
-        ctx.copy_framebuffer(out, fbo)
-        if measure:
-            ctx.finish()
-        stats.t_a_ms = (time.perf_counter() - t0) * 1000.0
-        return stats
+            if counts[name]:
+                elapsed = timed(lambda r=renderer: _passes(r, frame))
+                setattr(stats, key, getattr(stats, key) + elapsed)
 
     def release(self) -> None:
         self.geometry.release()

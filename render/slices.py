@@ -47,33 +47,57 @@ def slice_levels(height: int, width: int) -> int:
     return int(np.log2(min(height, width))) + 1
 
 
-def upload_layers(
-    ctx: moderngl.Context,
-    layers: SliceLayers,
-    axis: int,
-    height: float,
-    alpha_ref: float = 0.5,
-    repeat_v: bool = False,
-) -> LayerTextures:
+@dataclass
+class LayerLevels:
+    """One slice family's mip chains, computed without GL (safe on a worker thread)."""
+
+    color: list[np.ndarray]
+    data: list[np.ndarray]
+    count: int  # slices stacked along v
+    repeat_v: bool
+
+
+def layer_levels(
+    layers: SliceLayers, axis: int, height: float, alpha_ref: float = 0.5, repeat_v: bool = False
+) -> LayerLevels:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
     color_levels = stacked_slice_mips(layers.color, count, alpha_ref)
     data = pack_data(layers, axis, height)
-    data_levels = None
-    for i in range(n):
-        alphas = mean_alpha_chain(layers.color[i, ..., 3], count)
-        chain = weighted_chain(data[i], alphas)
-        data_levels = (
-            chain
-            if data_levels is None
-            else [np.concatenate([a, b], axis=0) for a, b in zip(data_levels, chain, strict=True)]
-        )
-    color = texture_with_mips(ctx, color_levels)
-    data_tex = texture_with_mips(ctx, data_levels)
-    for tex in (color, data_tex):
+    chains = [
+        weighted_chain(data[i], mean_alpha_chain(layers.color[i, ..., 3], count)) for i in range(n)
+    ]
+    data_levels = [np.concatenate(level, axis=0) for level in zip(*chains, strict=True)]
+    return LayerLevels(color_levels, data_levels, n, repeat_v)
+
+
+def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
+    color = texture_with_mips(ctx, levels.color)
+    data = texture_with_mips(ctx, levels.data)
+    for tex in (color, data):
         tex.repeat_x = True  # slices tile along u like the patch
-        tex.repeat_y = repeat_v  # only the top slice tiles along v
-    return LayerTextures(color, data_tex, n)
+        tex.repeat_y = levels.repeat_v  # only the top slice tiles along v
+    return LayerTextures(color, data, levels.count)
+
+
+@dataclass
+class SliceLevels:
+    """Every mip level of a converted patch, ready to upload (thesis 4.2.2-4.2.3)."""
+
+    x: LayerLevels
+    z: LayerLevels
+    top: LayerLevels
+    height: float
+
+    @classmethod
+    def compute(cls, sliced: SlicedPatch) -> SliceLevels:
+        h = sliced.height
+        return cls(
+            layer_levels(sliced.x, axis=0, height=h),
+            layer_levels(sliced.z, axis=2, height=h),
+            layer_levels(sliced.top, axis=1, height=h, repeat_v=True),
+            h,
+        )
 
 
 @dataclass
@@ -85,12 +109,15 @@ class SliceTextures:
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
-        h = sliced.height
+        return cls.from_levels(ctx, SliceLevels.compute(sliced))
+
+    @classmethod
+    def from_levels(cls, ctx: moderngl.Context, levels: SliceLevels) -> SliceTextures:
         return cls(
-            upload_layers(ctx, sliced.x, axis=0, height=h),
-            upload_layers(ctx, sliced.z, axis=2, height=h),
-            upload_layers(ctx, sliced.top, axis=1, height=h, repeat_v=True),
-            h,
+            upload_levels(ctx, levels.x),
+            upload_levels(ctx, levels.z),
+            upload_levels(ctx, levels.top),
+            levels.height,
         )
 
     def release(self) -> None:

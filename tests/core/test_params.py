@@ -47,3 +47,16 @@ def test_bad_colour_and_unknown_name():
 def test_round_trip_through_dict():
     p = PRESETS["utility lawn"]
     assert PatchParams.from_dict(p.to_dict()) == p
+
+
+def test_slice_params_keep_the_mip_chain_possible():
+    from core.params import ParameterError, SliceParams
+
+    assert SliceParams().slices == 8
+    assert SliceParams(slices=16, width=512, height=128, top=1024).top == 1024
+    with pytest.raises(ParameterError, match="slices = 0"):
+        SliceParams(slices=0)
+    with pytest.raises(ParameterError, match="slice width = 200 must be a power of two"):
+        SliceParams(width=200)
+    with pytest.raises(ParameterError, match="top slice size = 4096"):
+        SliceParams(top=4096)

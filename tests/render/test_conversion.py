@@ -73,3 +73,19 @@ def test_slice_textures_keep_coverage_in_every_level(converter, ctx):
         opaque = raw[..., 3] > 128
         assert 0.25 < data[..., 3][opaque].mean() / 255.0 < 0.75  # thresholds survive the mips
     textures.release()
+
+
+def test_conversion_steps_report_progress_and_give_the_same_slices(converter):
+    patch = generate_patch(PARAMS)
+    steps = converter.steps(patch, 3, SIZE, top_size=32)
+    progress = []
+    while True:
+        try:
+            progress.append(next(steps))
+        except StopIteration as done:
+            sliced = done.value
+            break
+    assert progress == [(k, 7) for k in range(1, 8)]  # 3 + 3 vertical slices, then the top
+    whole = converter.convert(patch, 3, SIZE, top_size=32)
+    assert np.array_equal(sliced.x.color, whole.x.color)
+    assert np.array_equal(sliced.top.threshold, whole.top.threshold)
