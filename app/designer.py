@@ -5,12 +5,12 @@ from __future__ import annotations
 import sys
 
 from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
-from PySide6.QtGui import QAction, QKeySequence, QUndoCommand, QUndoStack
+from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoCommand, QUndoStack
 from PySide6.QtWidgets import QApplication, QDockWidget, QFileDialog, QLabel, QMainWindow
 
 from app.scenes import DEFAULT_SCENE, Scene, get_scene
 from core.design import PatchDesign
-from core.params import PatchParams
+from core.params import PatchParams, SliceParams
 from core.patch import GrassPatch, generate_patch
 from widgets.patch_panel import PatchPanel
 from widgets.viewport import GrassViewport
@@ -90,6 +90,28 @@ class SetDensity(QUndoCommand):
         self.design.density = self.old
 
 
+class SetSlices(QUndoCommand):
+    def __init__(self, design: PatchDesign, old: SliceParams, new: SliceParams) -> None:
+        super().__init__("change slices")
+        self.design, self.old, self.new = design, old, new
+
+    def redo(self) -> None:
+        self.design.slices = self.new
+
+    def undo(self) -> None:
+        self.design.slices = self.old
+
+
+# (mode, menu text, shortcut): how the viewport draws the cells (render/frame.py MODES)
+REPRESENTATIONS = (
+    ("lod", "&LOD zones (all three)", "Ctrl+1"),
+    ("geometry", "&Geometry only", "Ctrl+2"),
+    ("volume", "&Volume only", "Ctrl+3"),
+    ("image", "&Image-based only", "Ctrl+4"),
+    ("compare", "&Compare side by side", "Ctrl+5"),
+)
+
+
 class DesignerWindow(QMainWindow):
     def __init__(self, scene: Scene) -> None:
         super().__init__()
@@ -102,7 +124,11 @@ class DesignerWindow(QMainWindow):
 
         self.viewport = GrassViewport(scene.camera())
         self.viewport.set_instances(scene.instances())
+        self.viewport.set_design_maps(scene.design_maps())
+        self.viewport.set_lod(scene.lod)
         self.viewport.set_density(self.design.density)
+        self.viewport.set_slice_params(self.design.slices)
+        self._converting = ""
         self.setCentralWidget(self.viewport)
 
         self.panel = PatchPanel(self.design)
@@ -117,8 +143,11 @@ class DesignerWindow(QMainWindow):
 
         self.panel.params_edited.connect(self._push_params)
         self.panel.density_edited.connect(self._push_density)
+        self.panel.slices_edited.connect(self._push_slices)
         self.design.params_changed.connect(self.builder.request)
         self.design.density_changed.connect(self.viewport.set_density)
+        self.design.slices_changed.connect(self.viewport.set_slice_params)
+        self.viewport.slices.progress.connect(self._on_conversion)
         self.builder.ready.connect(self._on_patch_ready)
         self.builder.busy.connect(self._on_busy)
         self.viewport.frame_rendered.connect(self._on_frame)
@@ -150,12 +179,34 @@ class DesignerWindow(QMainWindow):
             )
             view.addAction(act)
         view.addSeparator()
+        group = QActionGroup(self)
+        self.mode_actions: dict[str, QAction] = {}
+        for mode, text, key in REPRESENTATIONS:
+            act = QAction(text, self, shortcut=QKeySequence(key), checkable=True)
+            act.setChecked(mode == self.viewport.mode)
+            act.triggered.connect(lambda _=False, m=mode: self.viewport.set_mode(m))
+            group.addAction(act)
+            view.addAction(act)
+            self.mode_actions[mode] = act
+        self.techniques_action = QAction(
+            "&Technique colours", self, shortcut=QKeySequence("T"), checkable=True
+        )
+        self.techniques_action.setToolTip("geometry red, volume yellow, image-based blue")
+        self.techniques_action.toggled.connect(
+            lambda on: self.viewport.set_view("techniques" if on else "shaded")
+        )
+        view.addAction(self.techniques_action)
+        view.addSeparator()
         view.addAction(dock.toggleViewAction())
 
     # -- edits become undoable commands ------------------------------------------------------
     def _push_params(self, params: PatchParams) -> None:
         if params != self.design.params:
             self.undo_stack.push(SetParams(self.design, self.design.params, params))
+
+    def _push_slices(self, slices: SliceParams) -> None:
+        if slices != self.design.slices:
+            self.undo_stack.push(SetSlices(self.design, self.design.slices, slices))
 
     def _push_density(self, density: float) -> None:
         if density != self.design.density:
@@ -170,10 +221,15 @@ class DesignerWindow(QMainWindow):
         if busy:
             self.status.setText("generating patch …")
 
+    def _on_conversion(self, done: int, total: int) -> None:
+        self._converting = f"converting slices {done}/{total} · " if total else ""
+        self._on_frame(self.viewport.last_stats)
+
     def _on_frame(self, stats) -> None:
         self.status.setText(
-            f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
-            f"{stats.c_g} cells · frame {stats.t_a_ms:.1f} ms (grass {stats.t_g_ms:.1f} ms)"
+            self._converting + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
+            f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · frame {stats.t_a_ms:.0f} ms "
+            f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
             + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
         )
 

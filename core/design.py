@@ -1,21 +1,42 @@
-"""The patch being designed: parameters and global density, announcing changes (psygnal)."""
+"""The patch being designed: blade parameters, global density and how it is converted into
+slices, announcing changes (psygnal)."""
 
 from __future__ import annotations
 
 from psygnal import Signal
 
-from core.params import PatchParams
+from core.params import PatchParams, SliceParams
 
 
 class PatchDesign:
-    """Qt-free model. Views connect to `params_changed` / `density_changed`."""
+    """Qt-free model. Views connect to `params_changed` / `density_changed` /
+    `slices_changed`."""
 
     params_changed = Signal(object)
     density_changed = Signal(float)
+    slices_changed = Signal(object)
 
-    def __init__(self, params: PatchParams | None = None, density: float = 1.0) -> None:
+    def __init__(
+        self,
+        params: PatchParams | None = None,
+        density: float = 1.0,
+        slices: SliceParams | None = None,
+    ) -> None:
         self._params = params or PatchParams()
         self._density = float(density)
+        self._slices = slices or SliceParams()
+
+    @property
+    def slices(self) -> SliceParams:
+        return self._slices
+
+    @slices.setter
+    def slices(self, value: SliceParams) -> None:
+        if not isinstance(value, SliceParams):
+            raise TypeError("slices must be a SliceParams")
+        if value != self._slices:
+            self._slices = value
+            self.slices_changed.emit(value)
 
     @property
     def params(self) -> PatchParams:

@@ -106,7 +106,7 @@ class DesignMaps:
         c = (np.arange(width) + 0.5) / width
         u, v = np.meshgrid(c, c, indexing="xy")  # rows along v
         n = np.clip(fractal_noise(u, v, period=6, seed=seed, octaves=3) * 1.2 + 0.5, 0.0, 1.0)
-        dry = np.array([0.78, 0.72, 0.38], np.float32)
+        dry = np.array([0.60, 0.56, 0.26], np.float32)
         lush = np.array([0.22, 0.42, 0.12], np.float32)
         rgb = lush + (dry - lush) * n[..., None]
         alpha = tint * np.abs(n - 0.5)[..., None] * 2.0

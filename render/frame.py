@@ -184,6 +184,7 @@ class FramePipeline:
         else:
             self._draw(camera, (0, 0, w, h), self.only, stats, measure)
         ctx.viewport = (0, 0, w, h)
+        _opaque_alpha(fbo)
         ctx.copy_framebuffer(out, fbo)
         if measure:
             ctx.finish()
@@ -274,6 +275,19 @@ def _passes(renderer, frame: FrameUniforms) -> None:
     renderer.prepare(frame)
     renderer.draw()
     renderer.finalize()
+
+
+def _opaque_alpha(fbo: moderngl.Framebuffer) -> None:
+    """Set every pixel's alpha to 1. Alpha-to-coverage and the alpha test leave the fragment's
+    alpha in the image; a window compositor (Qt draws the viewport's framebuffer over the window)
+    would show the background through the grass."""
+    fbo.color_mask = (False, False, False, True)
+    fbo.depth_mask = False
+    fbo.use()
+    fbo.clear(0.0, 0.0, 0.0, 1.0)
+    fbo.color_mask = (True, True, True, True)
+    fbo.depth_mask = True
+    fbo.use()
 
 
 def _release_fbo(fbo: moderngl.Framebuffer) -> None:

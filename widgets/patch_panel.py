@@ -11,9 +11,44 @@ from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 from core.design import PatchDesign
-from core.params import PRESETS, ParameterError, PatchParams
+from core.params import (
+    PRESETS,
+    SLICE_COUNTS,
+    SLICE_SIZES,
+    TOP_SIZES,
+    ParameterError,
+    PatchParams,
+    SliceParams,
+)
 
 CUSTOM = "(custom)"
+SIZE_LABELS = {f"{w} × {h}": (w, h) for w, h in SLICE_SIZES}
+
+
+def _slice_children(sp: SliceParams) -> list[dict]:
+    return [
+        {
+            "name": "slices",
+            "title": "Slices per direction",
+            "type": "list",
+            "limits": list(SLICE_COUNTS),
+            "value": sp.slices,
+        },
+        {
+            "name": "slice_size",
+            "title": "Slice size",
+            "type": "list",
+            "limits": list(SIZE_LABELS),
+            "value": f"{sp.width} × {sp.height}",
+        },
+        {
+            "name": "top",
+            "title": "Horizontal slice",
+            "type": "list",
+            "limits": list(TOP_SIZES),
+            "value": sp.top,
+        },
+    ]
 
 
 def _field_param(f: dataclasses.Field, value) -> dict:
@@ -40,6 +75,7 @@ def _field_param(f: dataclasses.Field, value) -> dict:
 class PatchPanel(QWidget):
     params_edited = Signal(object)  # PatchParams
     density_edited = Signal(float)
+    slices_edited = Signal(object)  # SliceParams
 
     def __init__(self, design: PatchDesign, parent=None) -> None:
         super().__init__(parent)
@@ -67,6 +103,12 @@ class PatchPanel(QWidget):
                 "type": "group",
                 "children": [_field_param(f, getattr(design.params, f.name)) for f in fields],
             },
+            {
+                "name": "conversion",
+                "title": "Slices (volume and image-based)",
+                "type": "group",
+                "children": _slice_children(design.slices),
+            },
         ]
         self.root = Parameter.create(name="patch", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)
@@ -82,6 +124,7 @@ class PatchPanel(QWidget):
         self.root.sigTreeStateChanged.connect(self._on_tree_changed)
         design.params_changed.connect(self._on_params_changed)
         design.density_changed.connect(self._on_density_changed)
+        design.slices_changed.connect(self._on_slices_changed)
 
     @staticmethod
     def _preset_of(params: PatchParams) -> str:
@@ -93,6 +136,8 @@ class PatchPanel(QWidget):
     def param(self, name: str) -> Parameter:
         if name in ("preset", "density"):
             return self.root.child(name)
+        if name in ("slices", "slice_size", "top"):
+            return self.root.child("conversion", name)
         return self.root.child("blades", name)
 
     # -- widget → model ----------------------------------------------------------------------
@@ -108,6 +153,11 @@ class PatchPanel(QWidget):
                     self.params_edited.emit(PRESETS[value])
             elif name == "density":
                 self.density_edited.emit(float(value))
+            elif name in ("slices", "top"):
+                self.slices_edited.emit(self.design.slices.replace(**{name: int(value)}))
+            elif name == "slice_size":
+                w, h = SIZE_LABELS[value]
+                self.slices_edited.emit(self.design.slices.replace(width=w, height=h))
             else:
                 self._edit_field(name, value)
 
@@ -147,7 +197,17 @@ class PatchPanel(QWidget):
         finally:
             self._updating = False
 
+    def _on_slices_changed(self, sp: SliceParams) -> None:
+        self._updating = True
+        try:
+            self.param("slices").setValue(sp.slices)
+            self.param("slice_size").setValue(f"{sp.width} × {sp.height}")
+            self.param("top").setValue(sp.top)
+        finally:
+            self._updating = False
+
     def closeEvent(self, event) -> None:
         self.design.params_changed.disconnect(self._on_params_changed)
         self.design.density_changed.disconnect(self._on_density_changed)
+        self.design.slices_changed.disconnect(self._on_slices_changed)
         super().closeEvent(event)

@@ -15,10 +15,14 @@ from PySide6.QtGui import QSurfaceFormat
 from PySide6.QtOpenGLWidgets import QOpenGLWidget
 
 from core.camera import Camera
+from core.design_maps import DesignMaps
+from core.lod import LodConfig
+from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from render import context
 from render.frame import FramePipeline
+from widgets.slice_builder import SliceBuilder
 
 
 def gl_format() -> QSurfaceFormat:
@@ -48,6 +52,12 @@ class GrassViewport(QOpenGLWidget):
         self._patch: GrassPatch | None = None
         self._instances: np.ndarray | None = None
         self._density = 1.0
+        self._mode = "lod"
+        self._view = "shaded"
+        self._lod = LodConfig()
+        self._slice_params = SliceParams()
+        self._maps: DesignMaps | None = None
+        self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
         self.fly_mode = False
@@ -61,6 +71,41 @@ class GrassViewport(QOpenGLWidget):
     def set_patch(self, patch: GrassPatch) -> None:
         self._patch = patch
         self._upload(lambda pipeline: pipeline.set_patch(patch))
+        self.slices.schedule()
+
+    def set_mode(self, mode: str) -> None:
+        """lod | geometry | volume | image | compare (render/frame.py MODES)."""
+        self._mode = mode
+        self._upload(lambda pipeline: pipeline.set_only(mode))
+        self.slices.schedule()
+
+    @property
+    def mode(self) -> str:
+        return self._mode
+
+    def set_view(self, view: str) -> None:
+        """shaded | techniques."""
+        self._view = view
+        if self.pipeline is not None:
+            self.pipeline.view = view
+        self.update()
+
+    def set_lod(self, lod: LodConfig) -> None:
+        self._lod = lod
+        if self.pipeline is not None:
+            self.pipeline.lod = lod
+        self.update()
+
+    def set_slice_params(self, params: SliceParams) -> None:
+        self._slice_params = params
+        if self.pipeline is not None:
+            self.pipeline.set_slice_params(params)
+        self.slices.schedule()
+        self.update()
+
+    def set_design_maps(self, maps: DesignMaps) -> None:
+        self._maps = maps
+        self._upload(lambda pipeline: pipeline.set_design_maps(maps))
 
     def set_instances(self, instances: np.ndarray) -> None:
         self._instances = instances
@@ -89,12 +134,21 @@ class GrassViewport(QOpenGLWidget):
     # -- GL ----------------------------------------------------------------------------------
     def initializeGL(self) -> None:
         self.ctx = context.wrap_current()
-        self.pipeline = FramePipeline(self.ctx)
-        self.pipeline.set_density(self._density)
+        pipeline = FramePipeline(self.ctx)
+        pipeline.auto_convert = False  # self.slices converts step by step
+        pipeline.set_density(self._density)
+        pipeline.view = self._view
+        pipeline.lod = self._lod
+        pipeline.set_slice_params(self._slice_params)
+        if self._maps is not None:
+            pipeline.set_design_maps(self._maps)
         if self._patch is not None:
-            self.pipeline.set_patch(self._patch)
+            pipeline.set_patch(self._patch)
         if self._instances is not None:
-            self.pipeline.set_instances(self._instances)
+            pipeline.set_instances(self._instances)
+        pipeline.set_only(self._mode)
+        self.pipeline = pipeline
+        QTimer.singleShot(0, self.slices.schedule)
 
     def paintGL(self) -> None:
         if self.pipeline is None or self.ctx is None:
@@ -171,6 +225,7 @@ class GrassViewport(QOpenGLWidget):
             self.update()
 
     def release_gl(self) -> None:
+        self.slices.wait()
         if self.pipeline is not None:
             self.makeCurrent()
             self.pipeline.release()

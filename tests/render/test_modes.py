@@ -54,3 +54,16 @@ def test_slices_converted_outside_follow_patch_and_parameters(headless, ctx):
         pipeline.set_slice_params(SliceParams())
         pipeline.set_only("geometry")
     assert not pipeline.needs_slices
+
+
+def test_frame_is_opaque_where_grass_is_partly_covered(headless, ctx):
+    """A window composes the viewport by its alpha: every pixel must come out opaque, also
+    where alpha-to-coverage or the volume's blending left a fractional alpha."""
+    headless.load(SCENE, PARAMS)
+    out = headless._target(SIZE)
+    for mode in ("geometry", "lod"):
+        headless.pipeline.set_only(mode)
+        headless.pipeline.render(SCENE.camera("default"), out, SIZE)
+        alpha = np.frombuffer(out.read(components=4), np.uint8)[3::4]
+        assert alpha.min() == 255, mode
+    headless.pipeline.set_only("geometry")

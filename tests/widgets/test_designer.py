@@ -88,3 +88,52 @@ def test_density_slider_thins_grass(window, qtbot):
     window.panel.param("density").setValue(0.2)
     assert window.design.density == pytest.approx(0.2)
     assert coverage(grab(window)) < 0.8 * before
+
+
+def wait_for_slices(window, qtbot):
+    qtbot.waitUntil(
+        lambda: not window.viewport.slices.busy and not window.viewport.pipeline.needs_slices,
+        timeout=30000,
+    )
+
+
+def technique_shares(image):
+    r, g, b = (image[..., c].astype(int) for c in range(3))
+    return {
+        "red": (r > 120) & (g < 0.5 * r) & (b < 0.5 * r),
+        "yellow": (r > 120) & (g > 0.6 * r) & (b < 0.4 * r),
+        "blue": (b > 120) & (r < 0.5 * b) & (g < 0.7 * b),
+    }
+
+
+def test_compare_mode_with_technique_colours_shows_three_columns(window, qtbot):
+    wait_for_slices(window, qtbot)
+    window.mode_actions["compare"].trigger()
+    window.techniques_action.trigger()
+    assert window.viewport.mode == "compare" and window.techniques_action.isChecked()
+    wait_for_slices(window, qtbot)
+    masks = technique_shares(grab(window))
+    w = masks["red"].shape[1]
+    for k, colour in enumerate(("red", "yellow", "blue")):
+        column = masks[colour][:, k * w // 3 : (k + 1) * w // 3]
+        assert column.mean() > 0.1, colour
+    window.techniques_action.trigger()  # T again: back to shaded grass
+    assert not any(m.mean() > 0.01 for m in technique_shares(grab(window)).values())
+
+
+def test_slice_count_edit_reconverts_without_blocking_and_undoes(window, qtbot):
+    window.mode_actions["volume"].trigger()
+    wait_for_slices(window, qtbot)
+    assert window.viewport.pipeline.volume.slices == 8
+    progress = []
+    window.viewport.slices.progress.connect(lambda done, total: progress.append((done, total)))
+    window.panel.param("slices").setValue(2)
+    assert window.design.slices.slices == 2
+    assert window.viewport.slices.busy  # returned at once; the conversion runs in steps
+    wait_for_slices(window, qtbot)
+    assert window.viewport.pipeline.volume.slices == 2
+    assert (5, 5) in progress and progress[-1] == (0, 0)  # 2 + 2 vertical slices and the top
+    window.undo_stack.undo()
+    assert window.panel.param("slices").value() == 8
+    wait_for_slices(window, qtbot)
+    assert window.viewport.pipeline.volume.slices == 8
