@@ -28,7 +28,9 @@ out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec3 v_color;
-out vec2 v_design;             // design-map uv
+out vec4 v_map_color;          // colour modulation (eq. 6.8) at the vertex
+out vec3 v_ambient;            // ambient and diffuse light maps at the vertex (eq. 6.9)
+out vec3 v_diffuse;
 flat out float v_threshold;
 flat out float v_opacity;
 flat out float v_density;      // local density at the root, for AO_blade
@@ -47,13 +49,20 @@ void main() {
 #endif
     v_density = density;
     v_opacity = lod_opacity(in_threshold, density, in_lod);
-    v_design = design_uv(in_config, local.xz);
     if (v_opacity <= 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: the blade vanishes
         v_world = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_color = vec3(0.0);
         v_threshold = 1.0;
+        v_map_color = vec4(0.0); v_ambient = vec3(1.0); v_diffuse = vec3(1.0);
         return;
     }
+    // the maps change slowly across a cell: sampled per vertex, not per fragment
+    vec2 duv = design_uv(in_config, local.xz);
+#ifdef CAPTURE
+    v_map_color = vec4(0.0); v_ambient = vec3(1.0); v_diffuse = vec3(1.0);
+#else
+    v_map_color = design_color(duv); v_ambient = design_ambient(duv); v_diffuse = design_diffuse(duv);
+#endif
     vec3 world = (vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size;
     v_world = world;
     v_normal = in_normal * s;

@@ -11,8 +11,6 @@
 
 #elif defined FRAGMENT_SHADER
 
-#include "_design.glsl"
-
 uniform sampler2D u_blade;
 uniform vec3 u_eye;
 uniform float u_alpha_ref;     // medium alpha-test reference
@@ -21,7 +19,9 @@ in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec3 v_color;
-in vec2 v_design;
+in vec4 v_map_color;
+in vec3 v_ambient;
+in vec3 v_diffuse;
 flat in float v_opacity;
 flat in float v_density;
 
@@ -33,9 +33,8 @@ void main() {
     if (tex.a < u_alpha_ref) discard;
     vec3 n = normalize(v_normal);
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
-    vec3 albedo = modulate(v_color * tex.rgb, design_color(v_design));
-    vec3 lit = shade(albedo, n, ao_blade(v_world.y, v_density),
-                     design_ambient(v_design), design_diffuse(v_design));
+    vec3 albedo = mix(v_color * tex.rgb, v_map_color.rgb, v_map_color.a);  // eq. 6.8
+    vec3 lit = shade(albedo, n, ao_blade(v_world.y, v_density), v_ambient, v_diffuse);
     f_color = vec4(technique(lit), tex.a);
 }
 
