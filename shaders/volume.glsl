@@ -70,8 +70,9 @@ flat in vec4 v_config;
 
 out vec4 f_color;
 
-vec2 atlas_uv(float u, float v, float slice, float rows) {
-    float half_row = 0.5 / rows;
+vec2 atlas_uv(float u, float v, float slice, float rows, float lod) {
+    // half a texel of the coarser mip level read: the filter must not reach the next slice
+    float half_row = min(0.5 * exp2(ceil(lod)) / rows, 0.5);
     return vec2(u, (slice + clamp(v, half_row, 1.0 - half_row)) / u_slices);
 }
 
@@ -106,7 +107,7 @@ void main() {
         // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
         if ((hit_x ? v_mirror.x : v_mirror.y) < 0.0) slice = u_slices - 1.0 - slice;
         float u = fract((hit_x ? v_mirror.y * h.z : v_mirror.x * h.x));
-        vec2 uv = atlas_uv(u, h.y / u_height, slice, rows);
+        vec2 uv = atlas_uv(u, h.y / u_height, slice, rows, lod);
         vec4 c = hit_x ? textureLod(u_x_color, uv, lod) : textureLod(u_z_color, uv, lod);
         vec4 data = hit_x ? textureLod(u_x_data, uv, lod) : textureLod(u_z_data, uv, lod);
         vec2 duv = design_uv(v_config, h.xz);
