@@ -19,7 +19,7 @@ class ImageRenderer(InstancedRenderer):
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
     alpha_ref = 0.2
-    grazing_lean = 0.5  # see shaders/image.glsl: matches the volume zone's brightness
+    grazing_lean = 0.6  # see shaders/image.glsl: matches the volume zone's brightness
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx

@@ -16,17 +16,20 @@ from core.mipmaps import mean_alpha_chain, stacked_slice_mips, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
 
-# The axis each slice family looks along: x-slices 0, top slice 1 (y), z-slices 2. Blades are
-# two-sided, so a normal and its negation light alike (shaders turn it to the viewer): the data
-# texture keeps the normal turned to +axis and stores only its two other components
-# (shaders/_slices.glsl rebuilds the third), which frees a channel for the height.
-KEPT_COMPONENTS = {0: (1, 2), 1: (0, 2), 2: (0, 1)}
+# Blades are two-sided: a normal and its negation light alike once a shader turns it to the
+# viewer. The data textures keep every normal turned up (n.y >= 0) before the mips average them,
+# so two faces of similar blades do not cancel out. Averaging shortens the normal, and the
+# shortened normal is kept: the lambert term of an average normal is the average of the lambert
+# terms (the dot product is linear), which keeps distant slices as bright as the blades.
+# - vertical slices: rgb = normal · 0.5 + 0.5, a = density threshold;
+# - the horizontal slice: rg = normal x, z · 0.5 + 0.5 (y rebuilt, seen from above it is the
+#   long one), b = height above the ground / patch height (AO_blade, eq. 6.11), a = threshold.
 
 
 @dataclass
 class LayerTextures:
     color: moderngl.Texture
-    data: moderngl.Texture  # rg = two normal components · 0.5 + 0.5, b = height, a = threshold
+    data: moderngl.Texture  # see above: normal, (height), threshold
     count: int  # slices stacked along v
 
     def release(self) -> None:
@@ -34,13 +37,19 @@ class LayerTextures:
         self.data.release()
 
 
-def pack_data(layers: SliceLayers, axis: int, height: float) -> np.ndarray:
-    """(n, h, w, 4) floats in 0 … 1: the normal's two kept components, height / patch height and
-    the density threshold."""
-    n = layers.normal * np.where(layers.normal[..., axis : axis + 1] < 0, -1.0, 1.0)
-    kept = n[..., list(KEPT_COMPONENTS[axis])] * 0.5 + 0.5
+def canonical_data(layers: SliceLayers, height: float) -> np.ndarray:
+    """(n, h, w, 5): the normal turned up, height / patch height, threshold."""
+    n = layers.normal * np.where(layers.normal[..., 1:2] < 0, -1.0, 1.0)
     h = np.clip(layers.height / max(height, 1e-6), 0.0, 1.0)
-    return np.concatenate([kept, h[..., None], layers.threshold[..., None]], axis=-1)
+    return np.concatenate([n, h[..., None], layers.threshold[..., None]], axis=-1)
+
+
+def pack_data(level: np.ndarray, top: bool) -> np.ndarray:
+    """One mip level of canonical data into the texture's 4 channels (0 … 1)."""
+    n = level[..., :3] * 0.5 + 0.5
+    if top:
+        return np.concatenate([n[..., [0, 2]], level[..., 3:5]], axis=-1).astype(np.float32)
+    return np.concatenate([n, level[..., 4:5]], axis=-1).astype(np.float32)
 
 
 def slice_levels(height: int, width: int) -> int:
@@ -58,17 +67,19 @@ class LayerLevels:
 
 
 def layer_levels(
-    layers: SliceLayers, axis: int, height: float, alpha_ref: float = 0.5, repeat_v: bool = False
+    layers: SliceLayers, height: float, top: bool = False, alpha_ref: float = 0.5
 ) -> LayerLevels:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
     color_levels = stacked_slice_mips(layers.color, count, alpha_ref)
-    data = pack_data(layers, axis, height)
+    data = canonical_data(layers, height)
     chains = [
         weighted_chain(data[i], mean_alpha_chain(layers.color[i, ..., 3], count)) for i in range(n)
     ]
-    data_levels = [np.concatenate(level, axis=0) for level in zip(*chains, strict=True)]
-    return LayerLevels(color_levels, data_levels, n, repeat_v)
+    data_levels = [
+        pack_data(np.concatenate(level, axis=0), top) for level in zip(*chains, strict=True)
+    ]
+    return LayerLevels(color_levels, data_levels, n, repeat_v=top)
 
 
 def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
@@ -93,9 +104,9 @@ class SliceLevels:
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
         h = sliced.height
         return cls(
-            layer_levels(sliced.x, axis=0, height=h),
-            layer_levels(sliced.z, axis=2, height=h),
-            layer_levels(sliced.top, axis=1, height=h, repeat_v=True),
+            layer_levels(sliced.x, h),
+            layer_levels(sliced.z, h),
+            layer_levels(sliced.top, h, top=True),
             h,
         )
 

@@ -67,7 +67,7 @@ void main() {
     float density = u_density * v_density * design_density(v_design);
     c.a *= lod_opacity(data.a, density, v_lod);
     if (c.a < u_alpha_ref) discard;
-    vec3 n = slice_normal(data, 1) * vec3(v_mirror.x, 1.0, v_mirror.y);
+    vec3 n = top_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
     // The slice keeps the normals of what is seen from straight above (mostly up). Seen at a
     // grazing angle, grass shows the sides of its blades, whose normals face the viewer: lean the
     // normal that way as the view flattens, so the far zone lights like the volume beside it.

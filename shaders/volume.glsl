@@ -54,7 +54,7 @@ uniform float u_opaque;        // early-exit opacity
 uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
 uniform float u_overrun;       // cells a ray may run on past its cuboid
 uniform sampler2D u_x_color;   // slices across x, stacked along v; u runs along z
-uniform sampler2D u_x_data;    // normal (2 components), height, threshold
+uniform sampler2D u_x_data;    // normal, threshold (render/slices.py)
 uniform sampler2D u_z_color;   // slices across z; u runs along x
 uniform sampler2D u_z_data;
 uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
@@ -114,7 +114,7 @@ void main() {
         float density = u_density * v_density * design_density(duv);
         c.a *= lod_opacity(data.a, density, v_lod);
         if (c.a > 0.003) {
-            vec3 n = slice_normal(data, hit_x ? 0 : 2) * vec3(v_mirror.x, 1.0, v_mirror.y);
+            vec3 n = vertical_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
             vec3 albedo = modulate(c.rgb, design_color(duv));
             vec3 lit = technique(shade(albedo, n, ao_blade(h.y, density),
@@ -140,7 +140,7 @@ void main() {
             vec2 duv = design_uv(v_config, g.xz);
             float density = u_density * v_density * design_density(duv);
             c.a *= lod_opacity(data.a, density, v_lod);
-            vec3 n = slice_normal(data, 1) * vec3(v_mirror.x, 1.0, v_mirror.y);
+            vec3 n = top_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
             vec3 albedo = modulate(c.rgb, design_color(duv));
             vec3 lit = technique(shade(albedo, n, ao_blade(data.b * u_height, density),
