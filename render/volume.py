@@ -73,6 +73,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_overrun"].value = self.overrun
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.x.color.width
+        p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.x.color.width)
         for unit, (name, tex) in enumerate(
             [
                 ("u_x_color", t.x.color),

@@ -59,6 +59,7 @@ uniform sampler2D u_z_color;   // slices across z; u runs along x
 uniform sampler2D u_z_data;
 uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
 uniform sampler2D u_top_data;
+uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 
 in vec3 v_patch;
 flat in vec2 v_origin;
@@ -135,8 +136,10 @@ void main() {
         if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, vec2(v_size + u_overrun)))) {
             vec2 p = v_mirror * g.xz;
             vec2 uv = vec2(p.x, 1.0 - p.y);
-            vec4 c = texture(u_top_color, uv);
-            vec4 data = texture(u_top_data, uv);
+            // explicit level: after the loop's breaks the derivatives are undefined
+            float top_lod = max(lod + u_top_lod_offset, 0.0);
+            vec4 c = textureLod(u_top_color, uv, top_lod);
+            vec4 data = textureLod(u_top_data, uv, top_lod);
             vec2 duv = design_uv(v_config, g.xz);
             float density = u_density * v_density * design_density(duv);
             c.a *= lod_opacity(data.a, density, v_lod);
