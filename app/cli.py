@@ -129,7 +129,7 @@ def cmd_render(args: argparse.Namespace) -> int:
 
     renderer = HeadlessRenderer()
     renderer.pipeline.view = args.view
-    renderer.pipeline.lod = scene.lod
+    renderer.pipeline.set_lod(scene.lod)
     renderer.pipeline.set_only(args.only or "lod")
     renderer.load(scene, params, density=args.density)
     image, stats = renderer.render(camera, args.size, measure=True)

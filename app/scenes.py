@@ -62,7 +62,7 @@ SCENES: dict[str, Scene] = {
             "grazing": CameraSpec((0.0, 1.3, 4.2), (0.0, 0.0, -1.5)),
         },
         # the grazing camera sees all three: geometry to 3.5, volume to 6.5, image beyond
-        lod=LodConfig(geometry_end=3.5, volume_end=6.5, transition=1.5),
+        lod=LodConfig.zones(geometry_end=3.5, volume_end=6.5, transition=1.5),
         mirror_seed=1,
         tint=0.2,
     ),
@@ -78,7 +78,7 @@ SCENES: dict[str, Scene] = {
             "grazing": CameraSpec((0.0, 0.6, 17.0), (0.0, 0.1, 0.0)),
             "zones": CameraSpec((0.0, 2.0, 17.5), (0.0, 0.0, 6.0)),
         },
-        lod=LodConfig(geometry_end=5.0, volume_end=16.0, transition=4.0),
+        lod=LodConfig.zones(geometry_end=5.0, volume_end=16.0, transition=4.0),
         mirror_seed=1,
         tint=0.2,
     ),

@@ -11,7 +11,8 @@ from core.tiling import mirror_bits
 # - density: a local scale of the patch's blade thresholds;
 # - lod: the LOD transition (w, side): side 0 keeps blades with threshold / density <= w, side 1
 #   the others (core/lod.py, thesis 5.4);
-# - size: macro-cell edge in cells (volume and image-based repeat their slices);
+# - size: the (macro-)cell's extent in cells along x and z (volume and image-based repeat their
+#   slices; macro-cells at a terrain's edge may be rectangular, thesis 6.2);
 # - mirror: the aperiodic tiling's symmetry vector (s_x, s_z) in {-1, 1} (core/tiling.py);
 # - config: the config transform into design-map texture space, uv = config.xy + local ·
 #   config.zw for a point `local` in cell units from the origin (thesis 6.4, configTf).
@@ -20,7 +21,7 @@ INSTANCE_DTYPE = np.dtype(
         ("origin", np.float32, 2),
         ("density", np.float32),
         ("lod", np.float32, 2),
-        ("size", np.float32),
+        ("size", np.float32, 2),
         ("mirror", np.float32, 2),
         ("config", np.float32, 4),
     ]

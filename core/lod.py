@@ -9,11 +9,10 @@ every blade is visible exactly once.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
-
-from core.grid import INSTANCE_DTYPE
 
 REPRESENTATIONS = ("geometry", "volume", "image")
 ALL_IN = 2.0  # w for a cell wholly inside one zone: every blade passes eq. 5.26's window
@@ -43,62 +42,134 @@ def opacity(threshold, w, local_density: float, epsilon: float, far: bool):
 
 
 @dataclass(frozen=True)
-class LodConfig:
-    """Zone boundaries in world units (one cell = 1). A boundary of None leaves the level out."""
+class LodLevel:
+    """One level of detail: a representation drawn from `begin` to `end` (world units from the
+    eye). Consecutive levels overlap: between the next level's begin and this level's end lies
+    their transition zone (thesis 5.4 and ch. 7: "geometry to 20, volume 5-80, ...")."""
 
-    geometry_end: float | None = 3.0
-    volume_end: float | None = 6.0
-    transition: float = 1.0
+    representation: str
+    begin: float = 0.0
+    end: float | None = None  # None: to the horizon
+    slices: int = 8  # vertical slices per direction (volume)
+    macro: int = 1  # largest macro-cell edge in cells (volume, image-based; thesis 6.2)
+
+    def __post_init__(self) -> None:
+        if self.representation not in REPRESENTATIONS:
+            raise ValueError(
+                f"LOD representation {self.representation!r} is not one of "
+                f"{', '.join(REPRESENTATIONS)}"
+            )
+        if self.begin < 0 or (self.end is not None and self.end <= self.begin):
+            raise ValueError(f"LOD level {self.representation}: needs 0 <= begin < end")
+        if self.macro < 1 or self.macro & (self.macro - 1):
+            raise ValueError(f"LOD level {self.representation}: macro-cell size must be 1, 2, 4, …")
+        if self.representation == "geometry" and self.macro != 1:
+            raise ValueError("geometry draws no macro-cells (thesis 6.2)")
+
+    @property
+    def key(self) -> tuple[str, int]:
+        """What a renderer needs to draw the level: volume levels differ in their slices."""
+        return (self.representation, self.slices if self.representation == "volume" else 0)
+
+
+@dataclass(frozen=True)
+class LodConfig:
+    """Levels ordered by distance. Level i+1 begins before level i ends (or where it ends);
+    no distance lies in three levels; the last level runs to the horizon."""
+
+    levels: tuple[LodLevel, ...] = (
+        LodLevel("geometry", 0.0, 3.5),
+        LodLevel("volume", 2.5, 6.5),
+        LodLevel("image", 5.5, None),
+    )
     epsilon: float = 0.05
 
     def __post_init__(self) -> None:
-        ends = [e for e in (self.geometry_end, self.volume_end) if e is not None]
+        levels = self.levels
+        if not levels:
+            raise ValueError("a LOD configuration needs at least one level")
+        if not 0 <= self.epsilon < 0.5:
+            raise ValueError("epsilon must be in [0, 0.5)")
+        if levels[0].begin != 0:
+            raise ValueError("the first LOD level must begin at distance 0")
+        if levels[-1].end is not None:
+            raise ValueError("the last LOD level must run to the horizon (end = None)")
+        for i, (a, b) in enumerate(itertools.pairwise(levels)):
+            if a.end is None or not a.begin < b.begin <= a.end:
+                raise ValueError(
+                    f"LOD level {i + 2} must begin after level {i + 1} begins and no later than "
+                    "it ends: begins and ends must be increasing"
+                )
+            if b.end is not None and b.end <= a.end:
+                raise ValueError(f"LOD level ends must be increasing (level {i + 2})")
+        for i in range(len(levels) - 2):
+            if levels[i + 2].begin < levels[i].end:  # type: ignore[operator]
+                raise ValueError(f"LOD levels {i + 1} and {i + 3} overlap: at most two may")
+
+    @classmethod
+    def zones(
+        cls,
+        geometry_end: float | None = 3.0,
+        volume_end: float | None = 6.0,
+        transition: float = 1.0,
+        epsilon: float = 0.05,
+    ) -> LodConfig:
+        """Geometry, volume, image-based with boundaries at the given distances, each blended
+        over a transition zone of that width centred on the boundary."""
+        ends = [e for e in (geometry_end, volume_end) if e is not None]
         if any(e <= 0 for e in ends) or ends != sorted(ends):
             raise ValueError("LOD zone ends must be positive and increasing")
-        if self.transition < 0 or not 0 <= self.epsilon < 0.5:
-            raise ValueError("transition must be >= 0 and epsilon in [0, 0.5)")
+        if transition < 0:
+            raise ValueError("transition must be >= 0")
+        names = ["geometry"]
+        if geometry_end is not None:
+            names.append("volume")
+        if volume_end is not None:
+            names.append("image")
+        half = transition / 2.0
+        levels = []
+        for i, name in enumerate(names):
+            begin = 0.0 if i == 0 else max(ends[i - 1] - half, 1e-3)
+            end = ends[i] + half if i < len(ends) else None
+            levels.append(LodLevel(name, begin, end))
+        return cls(tuple(levels), epsilon)
 
-    def boundaries(self) -> list[tuple[str, str, float]]:
-        """(near representation, far representation, boundary distance) in order."""
-        levels = ["geometry"]
-        ends = []
-        if self.geometry_end is not None:
-            ends.append(self.geometry_end)
-            levels.append("volume")
-        if self.volume_end is not None:
-            ends.append(self.volume_end)
-            levels.append("image")
-        if self.geometry_end is None and self.volume_end is not None:
-            levels = ["geometry", "image"]
-        return [(levels[i], levels[i + 1], ends[i]) for i in range(len(ends))]
+    def representations(self) -> list[str]:
+        return [level.representation for level in self.levels]
 
 
-def select(instances: np.ndarray, eye, config: LodConfig) -> dict[str, np.ndarray]:
-    """Split cell instances between the representations by the distance of each cell centre to
-    the eye; cells in a transition zone go to both, with w and the side in `lod`."""
-    centre = instances["origin"] + 0.5
+def classify(d: np.ndarray, config: LodConfig) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per level: which distances it draws (mask) and their (w, side) per eq. 5.23-5.26."""
+    levels = config.levels
+    out = []
+    for i, level in enumerate(levels):
+        end = np.inf if level.end is None else level.end
+        inside = (d >= level.begin) & (d < end)
+        lod = np.empty((d.size, 2), np.float32)
+        lod[:] = (ALL_IN, 0.0)
+        if i > 0:  # the far side of the transition from the previous level
+            prev_end = levels[i - 1].end
+            band = d < prev_end
+            lod[band, 0] = weight_near(d[band], level.begin, prev_end)
+            lod[band, 1] = 1.0
+        if i + 1 < len(levels):  # the near side of the transition to the next level
+            nxt = levels[i + 1].begin
+            band = d >= nxt
+            lod[band, 0] = weight_near(d[band], nxt, end)
+            lod[band, 1] = 0.0
+        out.append((inside, lod))
+    return out
+
+
+def select(instances: np.ndarray, eye, config: LodConfig) -> list[np.ndarray]:
+    """Split cell instances between the LOD levels by the distance of each cell centre to the
+    eye (brute force, every cell); cells in a transition zone go to both levels, with w and the
+    side in `lod`. The quadtree traversal (core/traversal.py) must give the same answer."""
+    centre = instances["origin"] + 0.5 * instances["size"]
     d = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
-    out: dict[str, list[np.ndarray]] = {r: [] for r in REPRESENTATIONS}
-    lower = np.full(d.shape, -np.inf)
-    bounds = config.boundaries()
-    for near, far, b in bounds:
-        e1, e2 = b - config.transition / 2, b + config.transition / 2
-        inside = (d >= lower) & (d < e1)
-        out[near].append(_with_lod(instances[inside], ALL_IN, 0.0))
-        band = (d >= e1) & (d < e2)
-        w = weight_near(d[band], e1, e2) if config.transition > 0 else np.zeros(band.sum())
-        out[near].append(_with_lod(instances[band], w, 0.0))
-        out[far].append(_with_lod(instances[band], w, 1.0))
-        lower = np.full(d.shape, e2)
-    if bounds:  # beyond the last transition: the farthest representation alone
-        out[bounds[-1][1]].append(_with_lod(instances[d >= lower], -1.0, 1.0))
-    else:
-        out["geometry"].append(_with_lod(instances, ALL_IN, 0.0))
-    return {r: np.concatenate(v) if v else np.zeros(0, INSTANCE_DTYPE) for r, v in out.items()}
-
-
-def _with_lod(instances: np.ndarray, w, side: float) -> np.ndarray:
-    out = instances.copy()
-    out["lod"][:, 0] = w
-    out["lod"][:, 1] = side
+    out = []
+    for inside, lod in classify(d, config):
+        part = instances[inside].copy()
+        part["lod"] = lod[inside]
+        out.append(part)
     return out

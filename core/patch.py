@@ -27,9 +27,10 @@ VERTEX_DTYPE = np.dtype(
 )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class GrassPatch:
-    """The generated geometry of one patch: interleaved vertices and triangle indices."""
+    """The generated geometry of one patch: interleaved vertices and triangle indices. Patches
+    compare by identity (they hold arrays)."""
 
     params: PatchParams
     vertices: np.ndarray  # VERTEX_DTYPE, (blades * (subdivisions + 1) * 2,)

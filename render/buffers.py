@@ -12,7 +12,7 @@ INSTANCE_ATTRIBUTES = (
     ("in_origin", 2),
     ("in_cell_density", 1),
     ("in_lod", 2),
-    ("in_size", 1),
+    ("in_size", 2),
     ("in_mirror", 2),
     ("in_config", 4),
 )

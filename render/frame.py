@@ -44,7 +44,7 @@ class FramePipeline:
         self.ctx = ctx
         self.samples = max(0, min(samples, ctx.max_samples))
         self.geometry = GeometryRenderer(ctx)
-        self.volume = VolumeRenderer(ctx)
+        self.volumes: dict[int, VolumeRenderer] = {}  # one per slice count (thesis ch. 7)
         self.image = ImageRenderer(ctx)
         self.ground = GroundRenderer(ctx)
         self.props = PropRenderer(ctx)
@@ -56,14 +56,30 @@ class FramePipeline:
         # The viewport sets False and converts step by step (widgets/slice_builder.py).
         self.auto_convert = True
         self._converter: PatchConverter | None = None
-        self._slices_patch: GrassPatch | None = None  # what the current slices were made from
-        self._slices_params: SliceParams | None = None
+        # slice textures by slice count, all made from one patch with one set of sizes
+        self._slices: dict[int, SliceTextures] = {}
+        self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
         self.lighting = Lighting()
         self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
     # -- scene state -------------------------------------------------------------------------
+    @property
+    def volume(self) -> VolumeRenderer:
+        """The volume renderer of the designer's slice count (volume-only and compare modes)."""
+        return self._volume(self.slice_params.slices)
+
+    def _volume(self, slices: int) -> VolumeRenderer:
+        if slices not in self.volumes:
+            renderer = VolumeRenderer(self.ctx)
+            renderer.density = self.geometry.density
+            renderer.set_instances(self._instances)
+            if slices in self._slices:
+                renderer.set_slices(self._slices[slices], owned=False)
+            self.volumes[slices] = renderer
+        return self.volumes[slices]
+
     def set_patch(self, patch: GrassPatch) -> None:
         self.geometry.set_patch(patch)
         self._convert()
@@ -77,19 +93,38 @@ class FramePipeline:
             for renderer in (self.geometry, self.volume, self.image):
                 renderer.set_instances(self._instances)
 
+    def set_lod(self, lod: LodConfig) -> None:
+        self.lod = lod
+        self._convert()
+
     def set_slice_params(self, params: SliceParams) -> None:
         self.slice_params = params
         self._convert()
 
+    def required_slices(self) -> list[int]:
+        """Slice counts the current mode draws with."""
+        if self.only == "geometry" or self.geometry.patch is None:
+            return []
+        if self.only == "lod":
+            counts = {lv.slices for lv in self.lod.levels if lv.representation == "volume"}
+            if not counts and "image" in self.lod.representations():
+                counts = {self.slice_params.slices}  # the image-based needs a top slice
+            return sorted(counts)
+        return [self.slice_params.slices]
+
+    def missing_slices(self) -> list[int]:
+        """Slice counts needed now whose textures do not exist for this patch and these sizes."""
+        if self._slices_source != self._source():
+            return self.required_slices()
+        return [n for n in self.required_slices() if n not in self._slices]
+
     @property
     def needs_slices(self) -> bool:
-        """The mode draws slices and those of the current patch and parameters are missing."""
-        patch = self.geometry.patch
-        return (
-            self.only != "geometry"
-            and patch is not None
-            and (self._slices_patch is not patch or self._slices_params != self.slice_params)
-        )
+        return bool(self.missing_slices())
+
+    def _source(self) -> tuple[GrassPatch | None, tuple[int, int, int]]:
+        sp = self.slice_params
+        return (self.geometry.patch, (sp.width, sp.height, sp.top))
 
     @property
     def converter(self) -> PatchConverter:
@@ -101,18 +136,32 @@ class FramePipeline:
         self, textures: SliceTextures, patch: GrassPatch, params: SliceParams
     ) -> None:
         """Slices converted elsewhere (step by step) for `patch` with `params`."""
-        self.volume.set_slices(textures)
-        self.image.textures = textures
-        self._slices_patch, self._slices_params = patch, params
+        source = (patch, (params.width, params.height, params.top))
+        if (
+            self._slices_source is None
+            or self._slices_source[0] is not patch
+            or self._slices_source[1] != source[1]
+        ):
+            for textures_ in self._slices.values():
+                textures_.release()
+            self._slices = {}
+            self._slices_source = source
+        if params.slices in self._slices:
+            self._slices[params.slices].release()
+        self._slices[params.slices] = textures
+        for n, renderer in self.volumes.items():
+            renderer.set_slices(self._slices.get(n), owned=False)
+        self.image.textures = self._slices.get(self.slice_params.slices, textures)
 
     def _convert(self) -> None:
         """Slices of the current patch for the volume and image renderers (thesis 4.2)."""
-        if not self.auto_convert or not self.needs_slices:
+        if not self.auto_convert:
             return
-        patch, sp = self.geometry.patch, self.slice_params
-        assert patch is not None
-        sliced = self.converter.convert(patch, sp.slices, (sp.width, sp.height), sp.top)
-        self.set_slice_textures(SliceTextures.upload(self.ctx, sliced), patch, sp)
+        for n in self.missing_slices():
+            patch, sp = self.geometry.patch, self.slice_params.replace(slices=n)
+            assert patch is not None
+            sliced = self.converter.convert(patch, n, (sp.width, sp.height), sp.top)
+            self.set_slice_textures(SliceTextures.upload(self.ctx, sliced), patch, sp)
 
     def set_props(self, props: np.ndarray) -> None:
         """Boxes standing in the grass (core/props.py), drawn with the ground."""
@@ -127,22 +176,21 @@ class FramePipeline:
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self._instances = instances
-        self.geometry.set_instances(instances)
-        self.volume.set_instances(instances)
-        self.image.set_instances(instances)
+        for renderer in (self.geometry, self.image, *self.volumes.values()):
+            renderer.set_instances(instances)
         if instances.size:
-            o = instances["origin"]
+            lo = instances["origin"]
+            hi = lo + instances["size"]
             self.ground.grass_rect = (
-                float(o[:, 0].min()),
-                float(o[:, 1].min()),
-                float(o[:, 0].max() + 1),
-                float(o[:, 1].max() + 1),
+                float(lo[:, 0].min()),
+                float(lo[:, 1].min()),
+                float(hi[:, 0].max()),
+                float(hi[:, 1].max()),
             )
 
     def set_density(self, density: float) -> None:
-        self.geometry.density = float(density)
-        self.volume.density = float(density)
-        self.image.density = float(density)
+        for renderer in (self.geometry, self.image, *self.volumes.values()):
+            renderer.density = float(density)
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
@@ -227,38 +275,57 @@ class FramePipeline:
         self.design.use()
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
-        if mode == "lod":
-            tq = time.perf_counter()
-            parts = lod_select(self._instances, camera.eye, self.lod)
-            self.geometry.set_instances(parts["geometry"])
-            self.volume.set_instances(parts["volume"])
-            self.image.set_instances(parts["image"])
-            stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
-            counts = {r: int(parts[r].size) for r in parts}
-        else:
-            counts = {r: (self._instances.size if r == mode else 0) for r in SINGLE}
+        tq = time.perf_counter()
+        batches = self._batches(mode, camera)
+        stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         patch = self.geometry.patch
-        if patch is not None:
-            visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
-            stats.blades += visible * counts["geometry"]
-            stats.triangles = stats.blades * patch.params.subdivisions * 2
-        stats.c_g += counts["geometry"]
-        stats.c_v += counts["volume"]
-        stats.c_i += counts["image"]
+        for (representation, _), (_renderer, count) in batches.items():
+            counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
+            setattr(stats, counter, getattr(stats, counter) + count)
+            if representation == "geometry" and patch is not None:
+                visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
+                stats.blades += visible * count
+                stats.triangles = stats.blades * patch.params.subdivisions * 2
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
-        for renderer, key, name in (
-            (self.geometry, "t_g_ms", "geometry"),
-            (self.image, "t_i_ms", "image"),
-            (self.volume, "t_v_ms", "volume"),
+        order = {"geometry": 0, "image": 1, "volume": 2}
+        for (representation, _), (renderer, count) in sorted(
+            batches.items(), key=lambda item: (order[item[0][0]], -item[0][1])
         ):
-            if counts[name]:
+            if count:
+                key = {"geometry": "t_g_ms", "volume": "t_v_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
 
+    def _batches(self, mode: str, camera: Camera) -> dict[tuple[str, int], tuple[object, int]]:
+        """(representation, slices) → (renderer, instance count) for one view. In LOD mode the
+        cells of every level are selected by distance and levels that share a renderer are drawn
+        in one call; otherwise one representation draws every cell."""
+        if mode != "lod":
+            renderer = {"geometry": self.geometry, "volume": self.volume, "image": self.image}
+            key = (mode, self.slice_params.slices if mode == "volume" else 0)
+            return {key: (renderer[mode], int(self._instances.size))}
+        parts = lod_select(self._instances, camera.eye, self.lod)
+        grouped: dict[tuple[str, int], list[np.ndarray]] = {}
+        for level, part in zip(self.lod.levels, parts, strict=True):
+            grouped.setdefault(level.key, []).append(part)
+        batches = {}
+        for key, chunks in grouped.items():
+            cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
+            representation, slices = key
+            renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
+            if renderer is None:
+                renderer = self._volume(slices)
+            renderer.set_instances(cells)
+            batches[key] = (renderer, int(cells.size))
+        return batches
+
     def release(self) -> None:
         self.geometry.release()
-        self.volume.release()
+        for renderer in self.volumes.values():
+            renderer.release()
+        for textures in self._slices.values():
+            textures.release()
         self.image.release()
         self.ground.release()
         self.props.release()

@@ -41,14 +41,17 @@ class VolumeRenderer(InstancedRenderer):
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
         self.textures: SliceTextures | None = None
+        self._owned = False
         self.slices = 0
         self.density = 1.0
 
-    def set_slices(self, textures: SliceTextures) -> None:
-        if self.textures is not None:
+    def set_slices(self, textures: SliceTextures | None, owned: bool = True) -> None:
+        """The slices to draw. With owned=False the caller keeps and releases them."""
+        if self.textures is not None and self._owned and self.textures is not textures:
             self.textures.release()
         self.textures = textures
-        self.slices = textures.x.count
+        self._owned = owned
+        self.slices = textures.x.count if textures is not None else 0
 
     def _make_vao(self) -> moderngl.VertexArray:
         return self.ctx.vertex_array(
@@ -101,5 +104,5 @@ class VolumeRenderer(InstancedRenderer):
         for obj in (self.vao, self.instances, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()
-        if self.textures is not None:
+        if self.textures is not None and self._owned:
             self.textures.release()

@@ -16,7 +16,7 @@ in vec2 in_corner;             // unit square corner
 in vec2 in_origin;             // per instance
 in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
-in float in_size;              // per instance: macro-cell edge in cells
+in vec2 in_size;               // per instance: (macro-)cell extent in cells along x, z
 in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
 in vec4 in_config;             // per instance: config transform into the design maps
 

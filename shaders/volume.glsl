@@ -16,20 +16,20 @@ in vec3 in_corner;             // unit cube corner
 in vec2 in_origin;             // per instance: cell origin
 in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
-in float in_size;              // per instance: macro-cell edge in cells
+in vec2 in_size;               // per instance: (macro-)cell extent in cells along x, z
 in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
 in vec4 in_config;             // per instance: config transform into the design maps
 
 out vec3 v_patch;              // position on the cuboid in patch space
 flat out vec2 v_origin;
 flat out float v_density;
-flat out float v_size;
+flat out vec2 v_size;
 flat out vec2 v_lod;
 flat out vec2 v_mirror;
 flat out vec4 v_config;
 
 void main() {
-    v_patch = in_corner * vec3(in_size, u_height, in_size);
+    v_patch = in_corner * vec3(in_size.x, u_height, in_size.y);
     v_origin = in_origin;
     v_density = in_cell_density;
     v_size = in_size;
@@ -64,7 +64,7 @@ uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 in vec3 v_patch;
 flat in vec2 v_origin;
 flat in float v_density;
-flat in float v_size;
+flat in vec2 v_size;
 flat in vec2 v_lod;
 flat in vec2 v_mirror;
 flat in vec4 v_config;
@@ -102,7 +102,7 @@ void main() {
         // stopped at its own side wall would leave a gap, since the neighbour's wall behind it
         // fails the depth test once this fragment wrote depth.
         if (h.y < 0.0 || h.y > u_height || any(lessThan(h.xz, vec2(-u_overrun)))
-            || any(greaterThan(h.xz, vec2(v_size + u_overrun)))) break;
+            || any(greaterThan(h.xz, v_size + u_overrun))) break;
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
         // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
@@ -133,7 +133,7 @@ void main() {
     if (alpha <= u_opaque && d.y < -1e-4) {
         float lambda = -e.y / d.y;
         vec3 g = e + lambda * d;
-        if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, vec2(v_size + u_overrun)))) {
+        if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, v_size + u_overrun))) {
             vec2 p = v_mirror * g.xz;
             vec2 uv = vec2(p.x, 1.0 - p.y);
             // explicit level: after the loop's breaks the derivatives are undefined

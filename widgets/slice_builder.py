@@ -52,7 +52,8 @@ class SliceBuilder(QObject):
         if pipeline is None or not pipeline.needs_slices:
             self._cancel()
             return
-        patch, params = pipeline.geometry.patch, pipeline.slice_params
+        patch = pipeline.geometry.patch
+        params = pipeline.slice_params.replace(slices=pipeline.missing_slices()[0])
         if self.busy and self._target[0] is patch and self._target[1] == params:
             return  # already on it
         self._generation += 1

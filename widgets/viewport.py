@@ -93,7 +93,7 @@ class GrassViewport(QOpenGLWidget):
     def set_lod(self, lod: LodConfig) -> None:
         self._lod = lod
         if self.pipeline is not None:
-            self.pipeline.lod = lod
+            self.pipeline.set_lod(lod)
         self.update()
 
     def set_slice_params(self, params: SliceParams) -> None:
@@ -138,7 +138,7 @@ class GrassViewport(QOpenGLWidget):
         pipeline.auto_convert = False  # self.slices converts step by step
         pipeline.set_density(self._density)
         pipeline.view = self._view
-        pipeline.lod = self._lod
+        pipeline.set_lod(self._lod)
         pipeline.set_slice_params(self._slice_params)
         if self._maps is not None:
             pipeline.set_design_maps(self._maps)

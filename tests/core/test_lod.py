@@ -1,10 +1,12 @@
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
 from core.grid import grid_instances
-from core.lod import LodConfig, opacity, select, weight_near
+from core.lod import LodConfig, LodLevel, classify, opacity, select, weight_near
 
 
 @given(
@@ -40,18 +42,67 @@ def test_smoothstep_window_only_touches_blades_near_w():
 
 def test_select_puts_every_cell_in_a_zone_and_band_cells_in_two():
     cells = grid_instances(16, 16)
-    config = LodConfig(geometry_end=3.0, volume_end=6.0, transition=1.0)
-    parts = select(cells, np.array([0.0, 1.0, 0.0]), config)
-    total = sum(p.size for p in parts.values())
+    config = LodConfig.zones(geometry_end=3.0, volume_end=6.0, transition=1.0)
+    geometry, volume, image = select(cells, np.array([0.0, 1.0, 0.0]), config)
+    total = geometry.size + volume.size + image.size
     in_two = total - cells.size
     assert in_two > 0  # transition bands exist
-    both = parts["geometry"][parts["geometry"]["lod"][:, 0] < 2.0]
+    both = geometry[geometry["lod"][:, 0] < 2.0]
     assert both.size and np.all(both["lod"][:, 1] == 0.0)
-    far_side = parts["volume"][parts["volume"]["lod"][:, 1] == 1.0]
+    far_side = volume[volume["lod"][:, 1] == 1.0]
     assert far_side.size == both.size  # the same band cells, on the far side
-    assert parts["image"].size > 0
+    assert np.array_equal(np.sort(far_side["origin"], axis=0), np.sort(both["origin"], axis=0))
+    assert image.size > 0
+
+
+def test_thesis_football_levels_are_accepted_and_hand_over_pairwise():
+    levels = (
+        LodLevel("geometry", 0, 20),
+        LodLevel("volume", 5, 80, slices=8),
+        LodLevel("volume", 50, 160, slices=2, macro=32),
+        LodLevel("volume", 100, 300, slices=1, macro=32),
+        LodLevel("image", 200, None, macro=512),
+    )
+    config = LodConfig(levels)
+    d = np.linspace(0, 400, 4001)
+    parts = classify(d, config)
+    drawn = sum(inside.astype(int) for inside, _ in parts)
+    assert drawn.min() == 1 and drawn.max() == 2  # every distance drawn, at most by two levels
+    # in every overlap the near level keeps blades below w, the far one the rest, same w
+    for (a_in, a_lod), (b_in, b_lod) in itertools.pairwise(parts):
+        band = a_in & b_in
+        assert band.any()
+        assert np.all(a_lod[band, 1] == 0) and np.all(b_lod[band, 1] == 1)
+        assert np.allclose(a_lod[band, 0], b_lod[band, 0])
+        w = a_lod[band, 0]
+        assert np.all(np.diff(w) <= 1e-6) and w[0] > 0.99 and w[-1] < 0.01
+
+
+@pytest.mark.parametrize(
+    ("levels", "message"),
+    [
+        ((LodLevel("geometry", 0, 5), LodLevel("volume", 6, None)), "begin after level 1"),
+        ((LodLevel("geometry", 1, None),), "begin at distance 0"),
+        ((LodLevel("geometry", 0, 5),), "run to the horizon"),
+        (
+            (
+                LodLevel("geometry", 0, 10),
+                LodLevel("volume", 2, 12),
+                LodLevel("image", 8, None),
+            ),
+            "overlap",
+        ),
+    ],
+)
+def test_bad_levels_are_refused(levels, message):
+    with pytest.raises(ValueError, match=message):
+        LodConfig(levels)
 
 
 def test_bad_zones_are_refused():
     with pytest.raises(ValueError, match="increasing"):
-        LodConfig(geometry_end=5.0, volume_end=2.0)
+        LodConfig.zones(geometry_end=5.0, volume_end=2.0)
+    with pytest.raises(ValueError, match="macro-cells"):
+        LodLevel("geometry", 0, 5, macro=4)
+    with pytest.raises(ValueError, match="not one of"):
+        LodLevel("billboard", 0, 5)

@@ -42,19 +42,19 @@ def render(headless, only):
 @pytest.mark.parametrize(
     ("near", "far", "lod", "bounds"),
     [
-        ("geometry", "volume", LodConfig(geometry_end=4.0, volume_end=None), (3.0, 5.0)),
+        ("geometry", "volume", LodConfig.zones(geometry_end=4.0, volume_end=None), (3.0, 5.0)),
         # the geometry zone ends before the nearest cell the grazing camera sees
-        ("volume", "image", LodConfig(geometry_end=0.1, volume_end=5.0), (4.0, 6.0)),
+        ("volume", "image", LodConfig.zones(geometry_end=0.1, volume_end=5.0), (4.0, 6.0)),
     ],
 )
 def test_covered_fraction_is_continuous_through_the_transition(
     headless, ctx, near, far, lod, bounds
 ):
-    headless.pipeline.lod = lod
+    headless.pipeline.set_lod(lod)
     headless.load(SCENE, PARAMS, density=0.35)  # thin grass: coverage far from saturation
     lod, only_near, only_far = (render(headless, m) for m in ("lod", near, far))
     headless.pipeline.set_only("geometry")
-    headless.pipeline.lod = SCENE.lod
+    headless.pipeline.set_lod(SCENE.lod)
     dist = ground_distance(SCENE.camera("grazing"), SIZE)
     edges = np.linspace(*bounds, 9)
     checked = 0
@@ -77,12 +77,12 @@ def test_technique_view_shows_three_bands_that_blend(headless, ctx):
     scene = get_scene("bench")
     headless.load(scene, scene.params.replace(blade_count=400))
     headless.pipeline.set_only("lod")
-    headless.pipeline.lod = scene.lod
+    headless.pipeline.set_lod(scene.lod)
     headless.pipeline.view = "techniques"
     image, stats = headless.render(scene.camera("zones"), (240, 136))
     headless.pipeline.view = "shaded"
     headless.pipeline.set_only("geometry")
-    headless.pipeline.lod = SCENE.lod
+    headless.pipeline.set_lod(SCENE.lod)
     r, g, b = (image[..., c].astype(int) for c in range(3))
     colours = {
         "red": (r > 120) & (g < 0.5 * r) & (b < 0.5 * r),
