@@ -123,7 +123,7 @@ class DesignerWindow(QMainWindow):
         self.patch: GrassPatch | None = None
 
         self.viewport = GrassViewport(scene.camera())
-        self.viewport.set_instances(scene.instances())
+        self.viewport.set_terrain(scene.terrain())
         self.viewport.set_design_maps(scene.design_maps())
         self.viewport.set_lod(scene.lod)
         self.viewport.set_density(self.design.density)

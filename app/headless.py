@@ -28,7 +28,7 @@ class HeadlessRenderer:
     ) -> GrassPatch:
         patch = generate_patch(params or scene.params)
         self.pipeline.set_patch(patch)
-        self.pipeline.set_instances(scene.instances())
+        self.pipeline.set_terrain(scene.terrain())
         self.pipeline.set_design_maps(scene.design_maps())
         self.pipeline.set_density(scene.density if density is None else density)
         return patch

@@ -10,6 +10,7 @@ from core.camera import Camera
 from core.design_maps import DesignMaps
 from core.grid import grid_instances
 from core.lod import LodConfig
+from core.terrain import Terrain
 from core.params import DEFAULT_PRESET, PRESETS, PatchParams
 
 
@@ -37,6 +38,9 @@ class Scene:
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
+
+    def terrain(self) -> Terrain:
+        return Terrain.centred(*self.grid, mirror_seed=self.mirror_seed)
 
     def design_maps(self) -> DesignMaps:
         """The scene's design-map stack: procedural defaults until maps are painted."""

@@ -15,13 +15,16 @@ import numpy as np
 
 from core.camera import Camera
 from core.design_maps import DesignMaps
+from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
-from core.lod import LodConfig
+from core.lod import LodConfig, LodLevel
 from core.lod import select as lod_select
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
+from core.terrain import Terrain
+from core.traversal import traverse
 from render.context import release_framebuffer
 from render.conversion import PatchConverter
 from render.design_maps import DesignMapTextures
@@ -62,6 +65,9 @@ class FramePipeline:
         self.lighting = Lighting()
         self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
         self._instances = np.zeros(0, INSTANCE_DTYPE)
+        self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
+        self.culling = True
+        self.last_visited = 0  # quadtree nodes the last traversal tested
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
     # -- scene state -------------------------------------------------------------------------
@@ -172,9 +178,17 @@ class FramePipeline:
         self.design.release()
         self.design = DesignMapTextures(self.ctx, maps)
 
+    def set_terrain(self, terrain: Terrain) -> None:
+        """Cells from a terrain's quadtree: every frame one traversal selects, culls and groups
+        them into macro-cells per LOD level (core/traversal.py)."""
+        self.set_instances(terrain.all_cells())
+        self.terrain = terrain
+
     def set_instances(self, instances: np.ndarray) -> None:
+        """A fixed set of cells, each classified by distance every frame (no quadtree)."""
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
+        self.terrain = None
         self._instances = instances
         for renderer in (self.geometry, self.image, *self.volumes.values()):
             renderer.set_instances(instances)
@@ -276,7 +290,7 @@ class FramePipeline:
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         tq = time.perf_counter()
-        batches = self._batches(mode, camera)
+        batches = self._batches(mode, camera, w / max(h, 1))
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         patch = self.geometry.patch
         for (representation, _), (_renderer, count) in batches.items():
@@ -297,17 +311,28 @@ class FramePipeline:
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
 
-    def _batches(self, mode: str, camera: Camera) -> dict[tuple[str, int], tuple[object, int]]:
+    def _batches(
+        self, mode: str, camera: Camera, aspect: float
+    ) -> dict[tuple[str, int], tuple[object, int]]:
         """(representation, slices) → (renderer, instance count) for one view. In LOD mode the
         cells of every level are selected by distance and levels that share a renderer are drawn
-        in one call; otherwise one representation draws every cell."""
-        if mode != "lod":
-            renderer = {"geometry": self.geometry, "volume": self.volume, "image": self.image}
-            key = (mode, self.slice_params.slices if mode == "volume" else 0)
-            return {key: (renderer[mode], int(self._instances.size))}
-        parts = lod_select(self._instances, camera.eye, self.lod)
+        in one call; otherwise one representation draws every cell (no macro-cells)."""
+        if mode == "lod":
+            config = self.lod
+        else:
+            slices = self.slice_params.slices
+            config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
+        if self.terrain is not None:
+            frustum = Frustum.from_camera(camera, aspect) if self.culling else None
+            drawn = traverse(self.terrain, camera.eye, config, frustum)
+            parts = drawn.levels
+            self.last_visited = drawn.visited
+        elif mode == "lod":
+            parts = lod_select(self._instances, camera.eye, config)
+        else:
+            parts = [self._instances]
         grouped: dict[tuple[str, int], list[np.ndarray]] = {}
-        for level, part in zip(self.lod.levels, parts, strict=True):
+        for level, part in zip(config.levels, parts, strict=True):
             grouped.setdefault(level.key, []).append(part)
         batches = {}
         for key, chunks in grouped.items():

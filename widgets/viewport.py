@@ -20,6 +20,7 @@ from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
+from core.terrain import Terrain
 from render import context
 from render.frame import FramePipeline
 from widgets.slice_builder import SliceBuilder
@@ -51,6 +52,7 @@ class GrassViewport(QOpenGLWidget):
         self.pipeline: FramePipeline | None = None
         self._patch: GrassPatch | None = None
         self._instances: np.ndarray | None = None
+        self._terrain: Terrain | None = None
         self._density = 1.0
         self._mode = "lod"
         self._view = "shaded"
@@ -109,7 +111,13 @@ class GrassViewport(QOpenGLWidget):
 
     def set_instances(self, instances: np.ndarray) -> None:
         self._instances = instances
+        self._terrain = None
         self._upload(lambda pipeline: pipeline.set_instances(instances))
+
+    def set_terrain(self, terrain: Terrain) -> None:
+        self._terrain = terrain
+        self._instances = None
+        self._upload(lambda pipeline: pipeline.set_terrain(terrain))
 
     def _upload(self, fn) -> None:
         """Run a GL upload with this widget's context current (later, in initializeGL, if
@@ -146,6 +154,8 @@ class GrassViewport(QOpenGLWidget):
             pipeline.set_patch(self._patch)
         if self._instances is not None:
             pipeline.set_instances(self._instances)
+        if self._terrain is not None:
+            pipeline.set_terrain(self._terrain)
         pipeline.set_only(self._mode)
         self.pipeline = pipeline
         QTimer.singleShot(0, self.slices.schedule)
