@@ -125,6 +125,7 @@ class DesignerWindow(QMainWindow):
         self.viewport = GrassViewport(scene.camera())
         self.viewport.set_terrain(scene.terrain())
         self.viewport.set_design_maps(scene.design_maps())
+        self.viewport.set_props(scene.prop_boxes())
         self.viewport.set_lod(scene.lod)
         self.viewport.set_density(self.design.density)
         self.viewport.set_slice_params(self.design.slices)

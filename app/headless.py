@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import moderngl
 import numpy as np
 
@@ -30,6 +32,10 @@ class HeadlessRenderer:
         self.pipeline.set_patch(patch)
         self.pipeline.set_terrain(scene.terrain())
         self.pipeline.set_design_maps(scene.design_maps())
+        self.pipeline.set_props(scene.prop_boxes())
+        self.pipeline.lighting = dataclasses.replace(
+            self.pipeline.lighting, fog_distance=scene.fog_distance
+        )
         self.pipeline.set_density(scene.density if density is None else density)
         return patch
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -9,18 +10,22 @@ import numpy as np
 from core.camera import Camera
 from core.design_maps import DesignMaps
 from core.grid import grid_instances
-from core.lod import LodConfig
-from core.terrain import Terrain
+from core.lod import LodConfig, LodLevel
+from core.markings import football_colour_map
 from core.params import DEFAULT_PRESET, PRESETS, PatchParams
+from core.props import boxes
+from core.terrain import Terrain
 
 
 @dataclass(frozen=True)
 class CameraSpec:
     eye: tuple[float, float, float]
     target: tuple[float, float, float]
+    far: float = 500.0
+    near: float = 0.02
 
     def camera(self) -> Camera:
-        return Camera.from_eye_target(self.eye, self.target)
+        return Camera.from_eye_target(self.eye, self.target, near=self.near, far=self.far)
 
 
 @dataclass(frozen=True)
@@ -35,6 +40,11 @@ class Scene:
     lod: LodConfig = field(default_factory=LodConfig)
     mirror_seed: int | None = None  # aperiodic tiling (thesis 6.3); None: every cell alike
     tint: float = 0.0  # alpha of the procedural colour-modulation map (thesis 6.4.2)
+    # (width, height) -> RGBA colour-modulation map replacing the procedural one
+    colour_map: Callable[[int, int], np.ndarray] | None = None
+    map_size: tuple[int, int] = (256, 256)
+    props: tuple = ()  # rows for core.props.boxes: ((x, z), (w, h, d), (r, g, b))
+    fog_distance: float = 160.0  # world units (core/lighting.py)
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
@@ -44,7 +54,14 @@ class Scene:
 
     def design_maps(self) -> DesignMaps:
         """The scene's design-map stack: procedural defaults until maps are painted."""
-        return DesignMaps.procedural(256, seed=self.params.seed, tint=self.tint)
+        if self.colour_map is None:
+            return DesignMaps.procedural(self.map_size[0], seed=self.params.seed, tint=self.tint)
+        maps = DesignMaps(*self.map_size)
+        maps.write("color", 0, 0, self.colour_map(*self.map_size))
+        return maps
+
+    def prop_boxes(self) -> np.ndarray:
+        return boxes(self.props)
 
     def camera(self, name: str | None = None) -> Camera:
         name = name or self.default_camera
@@ -87,6 +104,50 @@ SCENES: dict[str, Scene] = {
         tint=0.2,
     ),
 }
+
+
+def _goals() -> tuple:
+    """Goal posts and crossbars at both ends, and a ball on the centre spot (props for t_m).
+    One cell is 0.2 m across the pitch (380 cells for 76 m) and 0.21 m along it."""
+    white = (0.92, 0.92, 0.9)
+    half_goal, post, height = 3.66 * 5.0, 0.6, 2.44 * 5.0
+    z_line = 105.0 / 2 * 532 / 113.0
+    rows = [((0.0, 0.0), (1.1, 1.1, 1.1), (0.9, 0.9, 0.85))]
+    for z in (-z_line, z_line):
+        for x in (-half_goal, half_goal):
+            rows.append(((x, z), (post, height, post), white))
+        rows.append(((0.0, z), (2 * half_goal + post, post, post), white, height - post))
+    return tuple(rows)
+
+
+SCENES["football"] = Scene(
+    name="football",
+    description="380 × 532 cells of 5000-blade turf, the thesis's five LOD levels and markings",
+    params=PRESETS["short-cut turf"],
+    grid=(380, 532),
+    cameras={
+        "high": CameraSpec((-260.0, 140.0, -190.0), (0.0, 0.0, 20.0), 1500.0, 0.5),
+        "player": CameraSpec((25.0, 9.0, -210.0), (0.0, 4.0, -60.0), 1500.0, 0.1),
+        "ant": CameraSpec((10.0, 0.25, 20.0), (14.0, 0.3, 120.0), 1500.0, 0.02),
+    },
+    default_camera="player",
+    # thesis ch. 7: geometry to 20; volume 2×8 slices 5-80, 2×2 50-160, 2×1 100-300, macro-cells
+    # up to 40 (here 32: a power of two); image-based from 200, macro-cells up to 500 (512)
+    lod=LodConfig(
+        (
+            LodLevel("geometry", 0.0, 20.0),
+            LodLevel("volume", 5.0, 80.0, slices=8, macro=32),
+            LodLevel("volume", 50.0, 160.0, slices=2, macro=32),
+            LodLevel("volume", 100.0, 300.0, slices=1, macro=32),
+            LodLevel("image", 200.0, None, macro=512),
+        )
+    ),
+    mirror_seed=3,
+    colour_map=football_colour_map,
+    map_size=(760, 1064),
+    props=_goals(),
+    fog_distance=1500.0,
+)
 DEFAULT_SCENE = "patch-grid"
 
 

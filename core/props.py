@@ -11,11 +11,14 @@ PROP_DTYPE = np.dtype(
 
 
 def boxes(rows) -> np.ndarray:
-    """Props from (centre x, z), (width, height, depth), (r, g, b) rows; boxes stand on y = 0."""
+    """Props from (centre x, z), (width, height, depth), (r, g, b)[, lift] rows; a box stands
+    on y = 0, or `lift` above it (a crossbar)."""
     rows = list(rows)
     out = np.zeros(len(rows), PROP_DTYPE)
-    for i, ((x, z), (w, h, d), color) in enumerate(rows):
+    for i, row in enumerate(rows):
+        (x, z), (w, h, d), color = row[:3]
+        lift = row[3] if len(row) > 3 else 0.0
         if min(w, h, d) <= 0:
             raise ValueError(f"prop {i}: size {w} × {h} × {d} must be positive")
-        out[i] = ((x, h / 2.0, z), (w, h, d), color)
+        out[i] = ((x, lift + h / 2.0, z), (w, h, d), color)
     return out

@@ -10,7 +10,7 @@ from render.uniforms import FrameUniforms
 
 
 class GroundRenderer:
-    extent = 400.0
+    extent = 2000.0
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -31,7 +31,11 @@ class GroundRenderer:
         p["u_fog_distance"].value = light.fog_distance
         p["u_grass_rect"].value = self.grass_rect
         self.ctx.enable(moderngl.DEPTH_TEST)
+        # pushed back a little in depth: grass lying on it (the image-based quads, the volume's
+        # floor) must win over the soil even far away, where depth precision is coarse
+        self.ctx.polygon_offset = (2.0, 4.0)
         self.vao.render(moderngl.TRIANGLE_STRIP)
+        self.ctx.polygon_offset = (0.0, 0.0)
 
     def release(self) -> None:
         self.vao.release()

@@ -10,6 +10,7 @@ from render.buffers import InstancedRenderer, instance_layout
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
+from render.volume import TOP_HEIGHT
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 
@@ -19,7 +20,7 @@ class ImageRenderer(InstancedRenderer):
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
     alpha_ref = 0.2
-    grazing_lean = 0.6  # see shaders/image.glsl: matches the volume zone's brightness
+    grazing_lean = 0.4  # see shaders/image.glsl: matches the volume zone's brightness
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -43,7 +44,7 @@ class ImageRenderer(InstancedRenderer):
         p = self.program
         frame.apply(p, self.technique_color)
         p["u_lift"].value = self.lift
-        p["u_height"].value = float(self.textures.height)
+        p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_grazing_lean"].value = self.grazing_lean
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon

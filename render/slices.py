@@ -21,15 +21,14 @@ from render.textures import texture_with_mips
 # so two faces of similar blades do not cancel out. Averaging shortens the normal, and the
 # shortened normal is kept: the lambert term of an average normal is the average of the lambert
 # terms (the dot product is linear), which keeps distant slices as bright as the blades.
-# - vertical slices: rgb = normal · 0.5 + 0.5, a = density threshold;
-# - the horizontal slice: rg = normal x, z · 0.5 + 0.5 (y rebuilt, seen from above it is the
-#   long one), b = height above the ground / patch height (AO_blade, eq. 6.11), a = threshold.
+# Every data texel: rgb = normal · 0.5 + 0.5, a = density threshold. (Rebuilding a third
+# component from two averaged ones would lengthen the normal again and brighten the mips.)
 
 
 @dataclass
 class LayerTextures:
     color: moderngl.Texture
-    data: moderngl.Texture  # see above: normal, (height), threshold
+    data: moderngl.Texture  # see above: normal, threshold
     count: int  # slices stacked along v
 
     def release(self) -> None:
@@ -44,12 +43,9 @@ def canonical_data(layers: SliceLayers, height: float) -> np.ndarray:
     return np.concatenate([n, h[..., None], layers.threshold[..., None]], axis=-1)
 
 
-def pack_data(level: np.ndarray, top: bool) -> np.ndarray:
+def pack_data(level: np.ndarray) -> np.ndarray:
     """One mip level of canonical data into the texture's 4 channels (0 … 1)."""
-    n = level[..., :3] * 0.5 + 0.5
-    if top:
-        return np.concatenate([n[..., [0, 2]], level[..., 3:5]], axis=-1).astype(np.float32)
-    return np.concatenate([n, level[..., 4:5]], axis=-1).astype(np.float32)
+    return np.concatenate([level[..., :3] * 0.5 + 0.5, level[..., 4:5]], axis=-1).astype(np.float32)
 
 
 def slice_levels(height: int, width: int) -> int:
@@ -76,9 +72,7 @@ def layer_levels(
     chains = [
         weighted_chain(data[i], mean_alpha_chain(layers.color[i, ..., 3], count)) for i in range(n)
     ]
-    data_levels = [
-        pack_data(np.concatenate(level, axis=0), top) for level in zip(*chains, strict=True)
-    ]
+    data_levels = [pack_data(np.concatenate(level, axis=0)) for level in zip(*chains, strict=True)]
     return LayerLevels(color_levels, data_levels, n, repeat_v=top)
 
 

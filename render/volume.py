@@ -25,11 +25,20 @@ _FACES = np.array(
 )  # fmt: skip
 
 
+# Seen from above, grass shows mostly its upper parts: the horizontal slice's AO_blade (eq. 6.11)
+# is taken at this fraction of the grass height.
+TOP_HEIGHT = 0.7
+
+
 class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 24
     opaque = 0.95
+    # The horizontal slice is a layer of the volume at this fraction of the grass height: rays
+    # from above meet it where, among vertical slices alone, they would fall between them
+    # down to the roots and look too dark (steep views; thesis 5.2 has vertical slices only).
+    floor = 0.5
     overrun = 1.0  # cells a ray may continue past its own cuboid (see shaders/volume.glsl)
 
     def __init__(self, ctx: moderngl.Context) -> None:
@@ -76,6 +85,8 @@ class VolumeRenderer(InstancedRenderer):
         p["u_overrun"].value = self.overrun
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.x.color.width
+        p["u_floor"].value = self.floor * float(t.height)
+        p["u_top_height"].value = TOP_HEIGHT * float(t.height)
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.x.color.width)
         for unit, (name, tex) in enumerate(
             [

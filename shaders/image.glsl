@@ -44,7 +44,7 @@ uniform sampler2D u_top_color;
 uniform sampler2D u_top_data;  // normal (2 components), height, threshold
 uniform float u_density;
 uniform float u_alpha_ref;
-uniform float u_height;        // patch height: the data's height is a fraction of it
+uniform float u_top_height;    // typical height of what the slice shows from above (AO_blade)
 uniform vec3 u_eye;
 uniform float u_grazing_lean;  // 0 … 1: how far the normal turns to the viewer at grazing angles
 
@@ -67,7 +67,7 @@ void main() {
     float density = u_density * v_density * design_density(v_design);
     c.a *= lod_opacity(data.a, density, v_lod);
     if (c.a < u_alpha_ref) discard;
-    vec3 n = top_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
+    vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
     // The slice keeps the normals of what is seen from straight above (mostly up). Seen at a
     // grazing angle, grass shows the sides of its blades, whose normals face the viewer: lean the
     // normal that way as the view flattens, so the far zone lights like the volume beside it.
@@ -76,7 +76,7 @@ void main() {
     n = normalize(mix(n, side, u_grazing_lean * (1.0 - abs(to_eye.y))));
     if (dot(n, to_eye) < 0.0) n = -n;  // two-sided, as the blades and the slices
     vec3 albedo = modulate(c.rgb, design_color(v_design));
-    vec3 lit = shade(albedo, n, ao_blade(data.b * u_height, density),
+    vec3 lit = shade(albedo, n, ao_blade(u_top_height, density),
                      design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(lit), c.a);
 }

@@ -60,6 +60,8 @@ uniform sampler2D u_z_data;
 uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
 uniform sampler2D u_top_data;
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
+uniform float u_floor;         // height of the horizontal slice inside the volume
+uniform float u_top_height;    // typical height of what the horizontal slice shows (AO_blade)
 
 in vec3 v_patch;
 flat in vec2 v_origin;
@@ -75,6 +77,26 @@ vec2 atlas_uv(float u, float v, float slice, float rows, float lod) {
     // half a texel of the coarser mip level read: the filter must not reach the next slice
     float half_row = min(0.5 * exp2(ceil(lod)) / rows, 0.5);
     return vec2(u, (slice + clamp(v, half_row, 1.0 - half_row)) / u_slices);
+}
+
+// The horizontal slice as a layer of the volume at height u_floor (render/volume.py): lit colour
+// and alpha where the ray crosses it.
+vec4 horizontal(vec3 g, vec3 d, float lod) {
+    vec2 p = v_mirror * g.xz;
+    vec2 uv = vec2(p.x, 1.0 - p.y);
+    float top_lod = max(lod + u_top_lod_offset, 0.0);  // explicit: no derivatives in the loop
+    vec4 c = textureLod(u_top_color, uv, top_lod);
+    vec4 data = textureLod(u_top_data, uv, top_lod);
+    vec2 duv = design_uv(v_config, g.xz);
+    float density = u_density * v_density * design_density(duv);
+    c.a *= lod_opacity(data.a, density, v_lod);
+    // unit length here: inside the volume the layer stands for the tips the rays would meet
+    vec3 n = normalize(slice_normal(data)) * vec3(v_mirror.x, 1.0, v_mirror.y);
+    if (dot(n, -d) < 0.0) n = -n;
+    vec3 albedo = modulate(c.rgb, design_color(duv));
+    vec3 lit = technique(shade(albedo, n, ao_blade(u_top_height, density),
+                               design_ambient(duv), design_diffuse(duv)));
+    return vec4(lit, c.a);
 }
 
 void main() {
@@ -93,10 +115,23 @@ void main() {
     vec3 color = vec3(0.0);
     float alpha = 0.0;
     float depth_lambda = -1.0;
+    // where the ray crosses the horizontal slice's plane (never, if it starts below or rises)
+    float floor_lambda = (d.y < -1e-4 && e.y > u_floor) ? (u_floor - e.y) / d.y : 1e30;
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
         bool hit_x = w.x < w.y;
         float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
+        if (floor_lambda < lambda) {  // the horizontal slice lies before the next vertical one
+            vec3 g = e + floor_lambda * d;
+            if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, v_size + u_overrun))) {
+                vec4 top = horizontal(g, d, lod);
+                color += (1.0 - alpha) * top.a * top.rgb;
+                alpha += (1.0 - alpha) * top.a;
+                if (depth_lambda < 0.0 && alpha > 0.5) depth_lambda = floor_lambda;
+            }
+            floor_lambda = 1e30;
+            if (alpha > u_opaque) break;
+        }
         vec3 h = e + lambda * d;                              // eq. 5.18
         // A ray may run on into the neighbouring cells (the patch tiles): a cell's fragment that
         // stopped at its own side wall would leave a gap, since the neighbour's wall behind it
@@ -115,7 +150,7 @@ void main() {
         float density = u_density * v_density * design_density(duv);
         c.a *= lod_opacity(data.a, density, v_lod);
         if (c.a > 0.003) {
-            vec3 n = vertical_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
+            vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
             vec3 albedo = modulate(c.rgb, design_color(duv));
             vec3 lit = technique(shade(albedo, n, ao_blade(h.y, density),
@@ -127,30 +162,13 @@ void main() {
         }
         if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
     }
-    // Rays that reach the ground between the slices see the horizontal slice lying there, as the
-    // image-based representation shows it: seen steeply from above, vertical slices alone leave
-    // the soil visible between them.
-    if (alpha <= u_opaque && d.y < -1e-4) {
-        float lambda = -e.y / d.y;
-        vec3 g = e + lambda * d;
+    if (floor_lambda < 1e29 && alpha <= u_opaque) {  // left the slices before the plane
+        vec3 g = e + floor_lambda * d;
         if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, v_size + u_overrun))) {
-            vec2 p = v_mirror * g.xz;
-            vec2 uv = vec2(p.x, 1.0 - p.y);
-            // explicit level: after the loop's breaks the derivatives are undefined
-            float top_lod = max(lod + u_top_lod_offset, 0.0);
-            vec4 c = textureLod(u_top_color, uv, top_lod);
-            vec4 data = textureLod(u_top_data, uv, top_lod);
-            vec2 duv = design_uv(v_config, g.xz);
-            float density = u_density * v_density * design_density(duv);
-            c.a *= lod_opacity(data.a, density, v_lod);
-            vec3 n = top_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
-            if (dot(n, -d) < 0.0) n = -n;
-            vec3 albedo = modulate(c.rgb, design_color(duv));
-            vec3 lit = technique(shade(albedo, n, ao_blade(data.b * u_height, density),
-                                       design_ambient(duv), design_diffuse(duv)));
-            color += (1.0 - alpha) * c.a * lit;
-            if (depth_lambda < 0.0 && alpha + (1.0 - alpha) * c.a > 0.5) depth_lambda = lambda;
-            alpha += (1.0 - alpha) * c.a;
+            vec4 top = horizontal(g, d, lod);
+            color += (1.0 - alpha) * top.a * top.rgb;
+            if (depth_lambda < 0.0 && alpha + (1.0 - alpha) * top.a > 0.5) depth_lambda = floor_lambda;
+            alpha += (1.0 - alpha) * top.a;
         }
     }
     if (alpha < 0.01) discard;

@@ -59,6 +59,7 @@ class GrassViewport(QOpenGLWidget):
         self._lod = LodConfig()
         self._slice_params = SliceParams()
         self._maps: DesignMaps | None = None
+        self._props: np.ndarray | None = None
         self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
@@ -105,6 +106,10 @@ class GrassViewport(QOpenGLWidget):
         self.slices.schedule()
         self.update()
 
+    def set_props(self, props: np.ndarray) -> None:
+        self._props = props
+        self._upload(lambda pipeline: pipeline.set_props(props))
+
     def set_design_maps(self, maps: DesignMaps) -> None:
         self._maps = maps
         self._upload(lambda pipeline: pipeline.set_design_maps(maps))
@@ -150,6 +155,8 @@ class GrassViewport(QOpenGLWidget):
         pipeline.set_slice_params(self._slice_params)
         if self._maps is not None:
             pipeline.set_design_maps(self._maps)
+        if self._props is not None:
+            pipeline.set_props(self._props)
         if self._patch is not None:
             pipeline.set_patch(self._patch)
         if self._instances is not None:
