@@ -73,6 +73,16 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--out", type=Path, help="PNG file to write")
     r.add_argument("--stats", type=Path, help="JSON file for the frame statistics")
 
+    pr = sub.add_parser("profile", help="frame statistics per viewpoint or along a path")
+    pr.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
+    pr.add_argument("--path", help="camera path of the scene (default: every named camera)")
+    pr.add_argument("--frames", type=int, default=None, help="frames per viewpoint or path")
+    pr.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
+    pr.add_argument(
+        "--only", choices=("geometry", "volume", "image"), help="one representation for all"
+    )
+    pr.add_argument("--out", type=Path, help="JSON file for every frame and the summaries")
+
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
     b = sub.add_parser("bench", help="run the benchmarks and write JSON")
@@ -152,10 +162,32 @@ def cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_profile(args: argparse.Namespace) -> int:
+    from app.profile import profile
+
+    try:
+        scene = get_scene(args.scene)
+    except KeyError as exc:
+        raise CliError(exc.args[0]) from None
+    if args.path is not None and args.path not in scene.paths:
+        known = ", ".join(scene.paths) or "none"
+        raise CliError(f"unknown camera path {args.path!r} for scene {scene.name}; paths: {known}")
+    frames = args.frames if args.frames is not None else (30 if args.path else 5)
+    if not 1 <= frames <= 10_000:
+        raise CliError(f"--frames {frames} out of range; allowed 1 … 10000")
+    if args.out is not None:
+        _writable(args.out)
+    text, _ = profile(scene, args.size, frames, args.path, args.out, args.only)
+    print(text)
+    return 0
+
+
 def cmd_scenes(_: argparse.Namespace) -> int:
     for scene in SCENES.values():
         print(f"{scene.name:12s} {scene.description}")
         print(f"{'':12s} cameras: {', '.join(scene.cameras)} (default {scene.default_camera})")
+        if scene.paths:
+            print(f"{'':12s} camera paths: {', '.join(scene.paths)}")
     return 0
 
 
@@ -202,6 +234,7 @@ def main(argv: list[str] | None = None) -> int:
         None: cmd_gui,
         "render": cmd_render,
         "scenes": cmd_scenes,
+        "profile": cmd_profile,
         "info": cmd_info,
         "bench": cmd_bench,
     }[args.command]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -45,6 +46,7 @@ class Scene:
     map_size: tuple[int, int] = (256, 256)
     props: tuple = ()  # rows for core.props.boxes: ((x, z), (w, h, d), (r, g, b))
     fog_distance: float = 160.0  # world units (core/lighting.py)
+    paths: dict[str, tuple[CameraSpec, ...]] = field(default_factory=dict)  # for profiling
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
@@ -62,6 +64,18 @@ class Scene:
 
     def prop_boxes(self) -> np.ndarray:
         return boxes(self.props)
+
+    def path_cameras(self, name: str, frames: int) -> list[Camera]:
+        """`frames` cameras spread along the named path."""
+        from core.paths import sample_path
+
+        keys = self.paths[name]
+        near = min(k.near for k in keys)
+        far = max(k.far for k in keys)
+        return [
+            Camera.from_eye_target(eye, target, near=near, far=far)
+            for eye, target in sample_path([(k.eye, k.target) for k in keys], frames)
+        ]
 
     def camera(self, name: str | None = None) -> Camera:
         name = name or self.default_camera
@@ -82,6 +96,12 @@ SCENES: dict[str, Scene] = {
             "top": CameraSpec((0.0, 9.0, 0.01), (0.0, 0.0, 0.0)),
             "grazing": CameraSpec((0.0, 1.3, 4.2), (0.0, 0.0, -1.5)),
         },
+        paths={
+            "orbit": tuple(
+                CameraSpec((6.0 * math.sin(a), 2.4, 6.0 * math.cos(a)), (0.0, 0.0, 0.0))
+                for a in np.linspace(0.0, 2.0 * math.pi, 9)
+            )
+        },
         # the grazing camera sees all three: geometry to 3.5, volume to 6.5, image beyond
         lod=LodConfig.zones(geometry_end=3.5, volume_end=6.5, transition=1.5),
         mirror_seed=1,
@@ -98,6 +118,13 @@ SCENES: dict[str, Scene] = {
             "top": CameraSpec((0.0, 40.0, 0.01), (0.0, 0.0, 0.0)),
             "grazing": CameraSpec((0.0, 0.6, 17.0), (0.0, 0.1, 0.0)),
             "zones": CameraSpec((0.0, 2.0, 17.5), (0.0, 0.0, 6.0)),
+        },
+        paths={
+            "approach": (
+                CameraSpec((0.0, 9.0, 22.0), (0.0, 0.0, 2.0)),
+                CameraSpec((0.0, 2.0, 17.5), (0.0, 0.0, 6.0)),
+                CameraSpec((0.0, 0.6, 12.0), (0.0, 0.1, 0.0)),
+            )
         },
         lod=LodConfig.zones(geometry_end=5.0, volume_end=16.0, transition=4.0),
         mirror_seed=1,
@@ -147,6 +174,15 @@ SCENES["football"] = Scene(
     map_size=(760, 1064),
     props=_goals(),
     fog_distance=1500.0,
+    paths={
+        # from the stands down onto the pitch, along it at player height, into the grass
+        "flyover": (
+            CameraSpec((-260.0, 140.0, -190.0), (0.0, 0.0, 20.0), 1500.0, 0.5),
+            CameraSpec((-60.0, 40.0, -240.0), (0.0, 0.0, -60.0), 1500.0, 0.2),
+            CameraSpec((25.0, 9.0, -210.0), (0.0, 4.0, -60.0), 1500.0, 0.1),
+            CameraSpec((10.0, 2.0, -60.0), (14.0, 0.3, 120.0), 1500.0, 0.05),
+        ),
+    },
 )
 DEFAULT_SCENE = "patch-grid"
 

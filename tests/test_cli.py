@@ -84,3 +84,51 @@ def test_designer_without_display_explains_headless_rendering():
 def test_scenes_lists_patch_grid():
     r = sward("scenes")
     assert r.returncode == 0 and "patch-grid" in r.stdout
+
+
+def test_profile_prints_the_table_and_the_parts_add_up(tmp_path):
+    out = tmp_path / "profile.json"
+    r = sward(
+        "profile", "--scene", "patch-grid", "--frames", "2", "--size", "160x120", "--out", str(out)
+    )
+    assert r.returncode == 0, r.stderr
+    header = r.stdout.splitlines()[0].split()
+    assert header == [
+        "viewpoint",
+        "fps",
+        "t_a",
+        "t_q",
+        "t_g",
+        "t_v",
+        "t_i",
+        "t_m",
+        "c_g",
+        "c_v",
+        "c_i",
+    ]
+    doc = json.loads(out.read_text())
+    names = [v["name"] for v in doc["viewpoints"]]
+    assert names == ["default", "close", "top", "grazing"]
+    for view in doc["viewpoints"]:
+        assert len(view["frames"]) == 2 and view["parts_add_up"]
+        for frame in view["frames"]:
+            parts = sum(
+                frame[k] for k in ("t_q_ms", "t_g_ms", "t_v_ms", "t_i_ms", "t_m_ms", "t_o_ms")
+            )
+            assert parts <= frame["t_a_ms"] + 0.5
+            assert parts >= 0.9 * frame["t_a_ms"] - 3.0
+    grazing = doc["viewpoints"][-1]["summary"]
+    assert grazing["c_g"]["median"] > 0 and grazing["c_v"]["median"] > 0  # LOD zones in view
+    assert "add up to t_a" in r.stdout
+
+
+def test_profile_along_a_path_and_bad_path(tmp_path):
+    r = sward(
+        "profile", "--scene", "patch-grid", "--path", "orbit", "--frames", "3", "--size", "96x64"
+    )
+    assert r.returncode == 0, r.stderr
+    assert "path orbit" in r.stdout
+    r = sward("profile", "--scene", "patch-grid", "--path", "nowhere")
+    assert r.returncode == 2
+    assert "unknown camera path 'nowhere'" in r.stderr and "orbit" in r.stderr
+    assert "Traceback" not in r.stderr

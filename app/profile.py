@@ -1,0 +1,59 @@
+"""`sward profile`: frame statistics per viewpoint or along a camera path, as the thesis's
+chapter 7 tables (median / min / max), written to JSON as well."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from core.profile import SUM_ALLOWANCE_MS, SUM_TOLERANCE, parts_add_up, summarize, table
+
+
+def profile(
+    scene,
+    size: tuple[int, int],
+    frames: int,
+    path: str | None,
+    out: Path | None,
+    only: str | None = None,
+) -> tuple[str, dict]:
+    """Render and measure; return the printed table and the JSON document."""
+    from app.headless import HeadlessRenderer
+
+    renderer = HeadlessRenderer()
+    renderer.pipeline.set_lod(scene.lod)
+    renderer.pipeline.set_only(only or "lod")
+    renderer.load(scene)
+    if path is not None:
+        views = [(f"path {path}", scene.path_cameras(path, frames))]
+    else:
+        views = [(name, [scene.camera(name)] * frames) for name in scene.cameras]
+    rows, document = [], {"scene": scene.name, "size": list(size), "viewpoints": []}
+    try:
+        for name, cameras in views:
+            renderer.render(cameras[0], size, measure=True)  # warm-up: shaders compile lazily
+            stats = [renderer.render(camera, size, measure=True)[1] for camera in cameras]
+            summary = summarize(stats)
+            rows.append((name, summary))
+            document["viewpoints"].append(
+                {
+                    "name": name,
+                    "summary": summary,
+                    "parts_add_up": all(parts_add_up(s) for s in stats),
+                    "frames": [s.to_dict() for s in stats],
+                }
+            )
+    finally:
+        renderer.release()
+    text = table(rows)
+    ok = all(v["parts_add_up"] for v in document["viewpoints"])
+    document["parts_add_up"] = ok
+    text += (
+        f"\nparts t_q + t_g + t_v + t_i + t_m + t_o (clear, resolve) "
+        f"{'add up to' if ok else 'DO NOT add up to'} t_a within "
+        f"{SUM_TOLERANCE:.0%} + {SUM_ALLOWANCE_MS:g} ms in every frame"
+    )
+    if out is not None:
+        out.write_text(json.dumps(document, indent=2) + "\n")
+        text += f"\nwrote {out}"
+    return text, document

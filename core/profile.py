@@ -1,0 +1,64 @@
+"""Profiling tables after the thesis's chapter 7: per viewpoint the median, min and max of the
+frame statistics over several frames, and the check that the parts add up to the whole."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from core.stats import FrameStats
+
+COLUMNS = ("fps", "t_a", "t_q", "t_g", "t_v", "t_i", "t_m", "c_g", "c_v", "c_i")
+# The parts (t_q + t_g + t_v + t_i + t_m + t_o) must lie within this fraction of t_a, plus a
+# small fixed allowance for the Python between the measured passes.
+SUM_TOLERANCE = 0.10
+SUM_ALLOWANCE_MS = 3.0
+
+
+def _value(stats: FrameStats, column: str) -> float:
+    if column == "fps":
+        return stats.fps
+    if column.startswith("t_"):
+        return getattr(stats, f"{column}_ms")
+    return float(getattr(stats, column))
+
+
+def summarize(frames: list[FrameStats]) -> dict[str, dict[str, float]]:
+    """{column: {median, min, max}} over the frames, plus the parts' sum as a share of t_a."""
+    if not frames:
+        raise ValueError("no frames to summarize")
+    out = {}
+    for column in (*COLUMNS, "t_o"):
+        values = np.array([_value(f, column) for f in frames])
+        out[column] = {
+            "median": float(np.median(values)),
+            "min": float(values.min()),
+            "max": float(values.max()),
+        }
+    shares = np.array([f.parts_ms / f.t_a_ms for f in frames if f.t_a_ms > 0])
+    out["parts_over_t_a"] = {
+        "median": float(np.median(shares)),
+        "min": float(shares.min()),
+        "max": float(shares.max()),
+    }
+    return out
+
+
+def parts_add_up(stats: FrameStats) -> bool:
+    """t_q + t_g + t_v + t_i + t_m + t_o lies within the tolerance of t_a (and not above it)."""
+    gap = stats.t_a_ms - stats.parts_ms
+    return -0.5 <= gap <= SUM_TOLERANCE * stats.t_a_ms + SUM_ALLOWANCE_MS
+
+
+def table(rows: list[tuple[str, dict[str, dict[str, float]]]]) -> str:
+    """The thesis-style table: a block per viewpoint, lines median / min / max."""
+    head = f"{'viewpoint':16s}{'':7s}" + "".join(f"{c:>10s}" for c in COLUMNS)
+    lines = [head, "-" * len(head)]
+    for name, summary in rows:
+        for i, stat in enumerate(("median", "min", "max")):
+            cells = []
+            for column in COLUMNS:
+                v = summary[column][stat]
+                cells.append(f"{v:10.0f}" if column.startswith("c_") else f"{v:10.2f}")
+            label = name if i == 0 else ""
+            lines.append(f"{label:16s}{stat:7s}" + "".join(cells))
+    return "\n".join(lines)
