@@ -79,6 +79,7 @@ class FramePipeline:
     def _volume(self, slices: int) -> VolumeRenderer:
         if slices not in self.volumes:
             renderer = VolumeRenderer(self.ctx)
+            renderer.technique_color = volume_technique_color(slices)
             renderer.density = self.geometry.density
             renderer.set_instances(self._instances)
             if slices in self._slices:
@@ -373,6 +374,16 @@ def _passes(renderer, frame: FrameUniforms) -> None:
     renderer.prepare(frame)
     renderer.draw()
     renderer.finalize()
+
+
+def volume_technique_color(slices: int) -> tuple[float, float, float]:
+    """Volume levels are yellow in the technique view (thesis Figs. 7.1-7.6); levels with fewer
+    slices in lighter or deeper yellows, so the thesis's three volume levels can be told apart."""
+    if slices >= 8:
+        return (1.0, 0.85, 0.1)
+    if slices >= 2:
+        return (0.95, 0.62, 0.05)
+    return (1.0, 0.97, 0.38)
 
 
 def _opaque_alpha(fbo: moderngl.Framebuffer) -> None:

@@ -67,7 +67,10 @@ void main() {
     float density = u_density * v_density * design_density(v_design);
     c.a *= lod_opacity(data.a, density, v_lod);
     if (c.a < u_alpha_ref) discard;
-    vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
+    // The normal is not mirrored: far away a mirrored macro-cell would flip the small sideways
+    // part of the patch's average normal and light hundreds of cells a few per cent brighter
+    // or darker than their neighbours, a checkerboard nobody would see in the blades themselves.
+    vec3 n = slice_normal(data);
     // The slice keeps the normals of what is seen from straight above (mostly up). Seen at a
     // grazing angle, grass shows the sides of its blades, whose normals face the viewer: lean the
     // normal that way as the view flattens, so the far zone lights like the volume beside it.
