@@ -1,0 +1,57 @@
+"""Macro-cell speed-ups after the thesis's Table 7.2: the 32 × 32 cells of the `bench` scene
+drawn by the volume and by the image-based renderer with macro-cells of at most 1, 2, 4, 8 and
+16 cells a side, from the default camera; frame time of that technique and the speed-up over
+1 × 1 cells. Medians of several frames.
+
+Run: `sward bench --suite macrocells --out results.json`.
+"""
+
+from __future__ import annotations
+
+import statistics
+
+SIZE = (1024, 768)
+SIZES = (1, 2, 4, 8, 16)
+# thesis Table 7.2 (GeForce 9800 GT), ms
+THESIS = {
+    "volume": (22.45, 12.2, 8.65, 6.31, 6.02),
+    "image": (2.24, 0.94, 0.50, 0.42, 0.41),
+}
+
+
+def macrocells(runs: int = 3) -> list[dict]:
+    from app.headless import HeadlessRenderer
+    from app.scenes import get_scene
+    from core.lod import LodConfig, LodLevel
+
+    scene = get_scene("bench")
+    renderer = HeadlessRenderer()
+    renderer.pipeline.set_only("lod")
+    renderer.load(scene)
+    camera = scene.camera()
+    rows = []
+    for representation, key in (("volume", "t_v_ms"), ("image", "t_i_ms")):
+        base = None
+        for size, thesis_ms in zip(SIZES, THESIS[representation], strict=True):
+            renderer.pipeline.set_lod(LodConfig((LodLevel(representation, 0.0, None, macro=size),)))
+            renderer.render(camera, SIZE)  # warm-up
+            frames = [renderer.render(camera, SIZE)[1] for _ in range(runs)]
+            t = statistics.median(getattr(f, key) for f in frames)
+            base = base or t
+            count = frames[0].c_v + frames[0].c_i
+            rows.append(
+                {
+                    "name": f"{representation}_macro_{size}",
+                    "median_ms": t,
+                    "speedup": base / t,
+                    "instances": float(count),
+                    "thesis_ms": thesis_ms,
+                    "thesis_speedup": THESIS[representation][0] / thesis_ms,
+                }
+            )
+    renderer.release()
+    return rows
+
+
+def run() -> list[dict]:
+    return macrocells()

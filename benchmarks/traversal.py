@@ -1,0 +1,81 @@
+"""Quadtree traversal time t_q and memory (thesis 6.1, ch. 7: 0.47 ms for the football field in
+C++; goal here: 0.5 ms) at the football cameras high, player and ant, and the same for a
+4096 × 4096-cell terrain: build time, memory, traversal time. Medians of many traversals with
+frustum culling, the football's five LOD levels and macro-cells.
+
+Run: `sward bench --suite traversal --out results.json`.
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+
+import numpy as np
+
+
+def _time(fn, runs: int) -> list[float]:
+    fn()  # warm-up
+    out = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        fn()
+        out.append((time.perf_counter() - start) * 1000.0)
+    return out
+
+
+def traversal(runs: int = 50) -> list[dict]:
+    from app.scenes import get_scene
+    from core.frustum import Frustum
+    from core.terrain import Terrain
+    from core.traversal import traverse
+
+    scene = get_scene("football")
+    rows = []
+    start = time.perf_counter()
+    terrain = scene.terrain()
+    build_ms = (time.perf_counter() - start) * 1000.0
+    rows.append(
+        {
+            "name": "football_quadtree",
+            "build_ms": build_ms,
+            "memory_mb": terrain.tree.memory_bytes / 1e6,
+            "nodes": float(terrain.tree.node_count),
+            "thesis_memory_mb": 42.0,
+        }
+    )
+    for name in ("high", "player", "ant"):
+        camera = scene.camera(name)
+        frustum = Frustum.from_camera(camera, 4 / 3)
+        result = traverse(terrain, camera.eye, scene.lod, frustum)
+        times = _time(lambda c=camera, f=frustum: traverse(terrain, c.eye, scene.lod, f), runs)
+        rows.append(
+            {
+                "name": f"football_t_q_{name}",
+                "median_ms": statistics.median(times),
+                "min_ms": min(times),
+                "nodes_visited": float(result.visited),
+                "instances": float(sum(level.size for level in result.levels)),
+                "thesis_ms": 0.47,
+            }
+        )
+    start = time.perf_counter()
+    big = Terrain.centred(4096, 4096)
+    build_ms = (time.perf_counter() - start) * 1000.0
+    camera = scene.camera("player")
+    eye = np.array([0.0, 9.0, -2100.0])
+    frustum = Frustum.from_view(eye, (0.0, 4.0, -1900.0), camera.fov_y, 4 / 3, 0.1, 5000.0)
+    times = _time(lambda: traverse(big, eye, scene.lod, frustum), max(runs // 5, 3))
+    rows.append(
+        {
+            "name": "terrain_4096x4096",
+            "build_ms": build_ms,
+            "memory_mb": big.tree.memory_bytes / 1e6,
+            "t_q_median_ms": statistics.median(times),
+        }
+    )
+    return rows
+
+
+def run() -> list[dict]:
+    return traversal()
