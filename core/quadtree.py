@@ -31,8 +31,8 @@ def node_bound(columns: int, rows: int) -> int:
 class QuadTree:
     columns: int
     rows: int
-    y_min: tuple[np.ndarray, ...]  # per level, (nx, nz) float32: lowest ground in the node
-    y_max: tuple[np.ndarray, ...]  # per level, (nx, nz) float32: highest ground in the node
+    y_min: tuple[np.ndarray, ...]  # per level, (nx, nz) float16: lowest ground in the node
+    y_max: tuple[np.ndarray, ...]  # per level, (nx, nz) float16: highest ground in the node
 
     @classmethod
     def build(
@@ -52,7 +52,13 @@ class QuadTree:
         while mins[-1].shape != (1, 1):
             mins.append(_reduce(mins[-1], np.minimum, np.inf))
             maxs.append(_reduce(maxs[-1], np.maximum, -np.inf))
-        return cls(columns, rows, tuple(mins), tuple(maxs))
+        # half floats, rounded outwards: the ranges stay conservative at half the memory
+        return cls(
+            columns,
+            rows,
+            tuple(_half(a, down=True) for a in mins),
+            tuple(_half(a, down=False) for a in maxs),
+        )
 
     @property
     def depth(self) -> int:
@@ -92,3 +98,11 @@ def _reduce(a: np.ndarray, op, fill: float) -> np.ndarray:
     padded[:nx, :nz] = a
     quads = padded.reshape(padded.shape[0] // 2, 2, padded.shape[1] // 2, 2)
     return op.reduce(op.reduce(quads, axis=3), axis=1)
+
+
+def _half(a: np.ndarray, down: bool) -> np.ndarray:
+    """float16 copy of `a`, each value rounded towards -inf (down) or +inf."""
+    h = a.astype(np.float16)
+    wrong = (h.astype(np.float32) > a) if down else (h.astype(np.float32) < a)
+    h[wrong] = np.nextafter(h[wrong], np.float16(-np.inf if down else np.inf))
+    return h
