@@ -15,7 +15,9 @@ from core.tiling import mirror_bits
 #   slices; macro-cells at a terrain's edge may be rectangular, thesis 6.2);
 # - mirror: the aperiodic tiling's symmetry vector (s_x, s_z) in {-1, 1} (core/tiling.py);
 # - config: the config transform into design-map texture space, uv = config.xy + local ·
-#   config.zw for a point `local` in cell units from the origin (thesis 6.4, configTf).
+#   config.zw for a point `local` in cell units from the origin (thesis 6.4, configTf);
+# - ground: the lowest ground height in the (macro-)cell and its unplanarity, highest − lowest
+#   (thesis 6.4.4, eq. 6.14: the volume cuboid is extruded over that range).
 INSTANCE_DTYPE = np.dtype(
     [
         ("origin", np.float32, 2),
@@ -24,6 +26,7 @@ INSTANCE_DTYPE = np.dtype(
         ("size", np.float32, 2),
         ("mirror", np.float32, 2),
         ("config", np.float32, 4),
+        ("ground", np.float32, 2),
     ]
 )
 

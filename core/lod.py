@@ -52,6 +52,8 @@ class LodLevel:
     end: float | None = None  # None: to the horizon
     slices: int = 8  # vertical slices per direction (volume)
     macro: int = 1  # largest macro-cell edge in cells (volume, image-based; thesis 6.2)
+    # macro-cells only where the ground's height range is at most this (6.4.4); None: anywhere
+    max_unplanarity: float | None = None
 
     def __post_init__(self) -> None:
         if self.representation not in REPRESENTATIONS:

@@ -42,6 +42,9 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
     begin = np.array([lv.begin for lv in levels])
     end = np.array([np.inf if lv.end is None else lv.end for lv in levels])
     macro = np.array([lv.macro for lv in levels])
+    max_unplanarity = [
+        np.inf if lv.max_unplanarity is None else lv.max_unplanarity for lv in levels
+    ]
     ox, oz = terrain.origin
 
     out: list[list[np.ndarray]] = [[] for _ in range(n_levels)]
@@ -81,15 +84,24 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
             np.maximum(np.abs(eye[2] - cz0), np.abs(eye[2] - cz1)),
         )
         span = 1 << level  # node edge in cells
+        y_lo = tree.y_min[level][ix, iz].astype(np.float32)
+        y_hi = tree.y_max[level][ix, iz].astype(np.float32)
+        # the unplanarity LOD test (6.4.4): macro-cells only on nearly flat ground
+        flat = [(y_hi - y_lo) <= limit for limit in max_unplanarity]
         for t in range(n_levels):
             bit = 1 << t
             active = (flags & bit) != 0
             gone = active & ((dmax < begin[t] - MARGIN) | (dmin >= end[t] + MARGIN))
             flags[gone] &= ~bit
             whole = _macro(t, span, active & ~gone, dmin, dmax, begin, end, macro)
+            whole &= flat[t]
             if whole.any():
                 cells = terrain.cells(
-                    x0[whole], z0[whole], x1[whole] - x0[whole], z1[whole] - z0[whole]
+                    x0[whole],
+                    z0[whole],
+                    x1[whole] - x0[whole],
+                    z1[whole] - z0[whole],
+                    (y_lo[whole], y_hi[whole]),
                 )
                 centre = cells["origin"] + 0.5 * cells["size"]
                 d = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
@@ -97,7 +109,8 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
                 out[t].append(cells)
                 flags[whole] &= ~bit
         if span > 1:
-            _pairs(terrain, eye, span, flags, (x0, z0, x1, z1), dmin, dmax, begin, end, macro, out)
+            box = (x0, z0, x1, z1, y_lo, y_hi)
+            _pairs(terrain, eye, span, flags, box, flat, dmin, dmax, begin, end, macro, out)
         keep = flags != 0
         ix, iz, parent = tree.children(level, ix[keep], iz[keep])
         flags = flags[keep][parent]
@@ -121,13 +134,13 @@ def _macro(t, span, active, dmin, dmax, begin, end, macro) -> np.ndarray:
     return core & (span <= macro[t])
 
 
-def _pairs(terrain, eye, span, flags, box, dmin, dmax, begin, end, macro, out) -> None:
+def _pairs(terrain, eye, span, flags, box, flat, dmin, dmax, begin, end, macro, out) -> None:
     """Nodes that reach into two neighbouring levels t, t+1 and no third, and fit both levels'
     macro-cell limits: both levels draw the very same node with one w, taken at its centre (the
     near one keeps threshold < w, the far one the rest), so every blade is drawn once. Within
     such a node the boundary between the levels blurs to the node's size, as macro-cells do in
     the thesis (Fig. 6.5); the cells of the node no longer follow their own distances."""
-    x0, z0, x1, z1 = box
+    x0, z0, x1, z1, y_lo, y_hi = box
     n = len(begin)
     for t in range(n - 1):
         if span > min(macro[t], macro[t + 1]):
@@ -136,9 +149,12 @@ def _pairs(terrain, eye, span, flags, box, dmin, dmax, begin, end, macro, out) -
         lo = end[t - 1] + MARGIN if t > 0 else -np.inf  # no cell reaches back into level t-1
         hi = begin[t + 2] - MARGIN if t + 2 < n else np.inf  # nor on into level t+2
         pair = ((flags & a) != 0) & ((flags & b) != 0) & (dmin >= lo) & (dmax < hi)
+        pair &= flat[t] & flat[t + 1]
         if not pair.any():
             continue
-        cells = terrain.cells(x0[pair], z0[pair], x1[pair] - x0[pair], z1[pair] - z0[pair])
+        cells = terrain.cells(
+            x0[pair], z0[pair], x1[pair] - x0[pair], z1[pair] - z0[pair], (y_lo[pair], y_hi[pair])
+        )
         centre = cells["origin"] + 0.5 * cells["size"]
         d = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
         w = weight_near(d, begin[t + 1], end[t]).astype(np.float32)

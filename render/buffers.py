@@ -15,6 +15,7 @@ INSTANCE_ATTRIBUTES = (
     ("in_size", 2),
     ("in_mirror", 2),
     ("in_config", 4),
+    ("in_ground", 2),
 )
 assert sum(n for _, n in INSTANCE_ATTRIBUTES) * 4 == INSTANCE_DTYPE.itemsize
 
