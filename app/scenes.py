@@ -47,23 +47,66 @@ class Scene:
     props: tuple = ()  # rows for core.props.boxes: ((x, z), (w, h, d), (r, g, b))
     fog_distance: float = 160.0  # world units (core/lighting.py)
     paths: dict[str, tuple[CameraSpec, ...]] = field(default_factory=dict)  # for profiling
+    # (width, height) -> (height, width) arrays in 0 … 1 for the stack's height and density maps
+    height_map: Callable[[int, int], np.ndarray] | None = None
+    height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
+    density_map: Callable[[int, int], np.ndarray] | None = None
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
 
+    def heights(self) -> np.ndarray | None:
+        """The height map as the GPU holds it (half floats), so that the terrain's bounding
+        volumes and the rendered ground agree to the last bit."""
+        if self.height_map is None:
+            return None
+        h = np.asarray(self.height_map(*self.map_size), np.float32)
+        return h.astype(np.float16).astype(np.float32)
+
     def terrain(self) -> Terrain:
-        return Terrain.centred(*self.grid, mirror_seed=self.mirror_seed)
+        return Terrain.centred(
+            *self.grid,
+            mirror_seed=self.mirror_seed,
+            heights=self.heights(),
+            height_scale=self.height_scale,
+            grass_height=self.params.patch_height,
+        )
 
     def design_maps(self) -> DesignMaps:
         """The scene's design-map stack: procedural defaults until maps are painted."""
         if self.colour_map is None:
-            return DesignMaps.procedural(self.map_size[0], seed=self.params.seed, tint=self.tint)
-        maps = DesignMaps(*self.map_size)
-        maps.write("color", 0, 0, self.colour_map(*self.map_size))
+            maps = DesignMaps.procedural(self.map_size[0], seed=self.params.seed, tint=self.tint)
+            if maps.size != self.map_size:
+                maps = DesignMaps(*self.map_size)
+        else:
+            maps = DesignMaps(*self.map_size)
+            maps.write("color", 0, 0, self.colour_map(*self.map_size))
+        heights = self.heights()
+        if heights is not None:
+            maps.write("height", 0, 0, heights)
+        if self.density_map is not None:
+            maps.write("density", 0, 0, self.density_map(*self.map_size))
         return maps
 
+    def ground_at(self, x: float, z: float) -> float:
+        """World height of the ground at world (x, z)."""
+        heights = self.heights()
+        if heights is None:
+            return 0.0
+        from core.heights import bilinear
+
+        cols, rows = self.grid
+        u, v = (x + cols / 2) / cols, (z + rows / 2) / rows
+        return float(bilinear(heights, np.array([u]), np.array([v]))[0]) * self.height_scale
+
     def prop_boxes(self) -> np.ndarray:
-        return boxes(self.props)
+        """The props, standing on the ground where they are (their lift added to it)."""
+        rows = []
+        for row in self.props:
+            (x, z), size, colour = row[:3]
+            lift = row[3] if len(row) > 3 else 0.0
+            rows.append(((x, z), size, colour, lift + self.ground_at(x, z)))
+        return boxes(rows)
 
     def path_cameras(self, name: str, frames: int) -> list[Camera]:
         """`frames` cameras spread along the named path."""
@@ -182,6 +225,61 @@ SCENES["football"] = Scene(
             CameraSpec((25.0, 9.0, -210.0), (0.0, 4.0, -60.0), 1500.0, 0.1),
             CameraSpec((10.0, 2.0, -60.0), (14.0, 0.3, 120.0), 1500.0, 0.05),
         ),
+    },
+)
+
+
+def _meadow_heights(width: int, height: int) -> np.ndarray:
+    from core.heights import hills
+
+    return hills(width, seed=7, period=3)[:height, :width]
+
+
+def _meadow_path(width: int, height: int) -> np.ndarray:
+    """Full density with a bare, winding footpath across the meadow (thesis Fig. 6.8)."""
+    u = (np.arange(width) + 0.5) / width
+    v = (np.arange(height) + 0.5) / height
+    U, V = np.meshgrid(u, v)  # rows along v
+    centre = 0.5 + 0.18 * np.sin(V * 2 * np.pi * 1.3 + 0.6)
+    d = np.abs(U - centre) * 48  # cells from the path's centre line (48 cells across)
+    return np.clip((d - 0.6) / 1.2, 0.0, 1.0).astype(np.float32)
+
+
+SCENES["meadow"] = Scene(
+    name="meadow",
+    description="a hilly 48 × 48-cell meadow, clustered grass with a bare path, a few rocks",
+    params=PRESETS[DEFAULT_PRESET].replace(blade_count=1600),
+    grid=(48, 48),
+    cameras={
+        "default": CameraSpec((7.0, 4.5, 27.0), (0.0, 1.5, 10.0), 300.0),
+        "path": CameraSpec((1.5, 3.2, 22.0), (0.0, 1.5, 8.0), 300.0),
+        "hill": CameraSpec((-30.0, 12.0, -30.0), (0.0, 1.5, 0.0), 300.0),
+    },
+    # small geometry zone and few ray steps: interactive on a CPU renderer (DESIGN.md)
+    lod=LodConfig(
+        (
+            LodLevel("geometry", 0.0, 7.0),
+            LodLevel("volume", 5.0, 22.0, slices=8, macro=4),
+            LodLevel("image", 18.0, None, macro=16, max_unplanarity=0.6),
+        )
+    ),
+    mirror_seed=5,
+    tint=0.25,
+    map_size=(256, 256),
+    height_map=_meadow_heights,
+    height_scale=3.0,
+    density_map=_meadow_path,
+    props=(
+        ((6.0, 10.0), (1.2, 0.9, 1.0), (0.45, 0.44, 0.42)),
+        ((-9.0, -4.0), (2.0, 1.4, 1.6), (0.5, 0.48, 0.45)),
+        ((12.0, -12.0), (0.8, 0.6, 0.9), (0.42, 0.41, 0.4)),
+    ),
+    paths={
+        "walk": (
+            CameraSpec((1.5, 3.2, 30.0), (0.0, 1.5, 10.0), 300.0),
+            CameraSpec((0.0, 3.5, 10.0), (0.0, 1.5, -10.0), 300.0),
+            CameraSpec((-10.0, 6.0, -20.0), (0.0, 1.0, 0.0), 300.0),
+        )
     },
 )
 DEFAULT_SCENE = "patch-grid"

@@ -280,6 +280,7 @@ class FramePipeline:
             technique_view=self.view == "techniques",
             viewport_height=h,
             fov_y=camera.fov_y,
+            height_scale=self.terrain.height_scale if self.terrain is not None else 0.0,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         ctx.viewport = region

@@ -1,4 +1,5 @@
-"""The ground plane under the grass (part of t_m, the rest of the scenery)."""
+"""The ground under the grass (part of t_m, the rest of the scenery): a large plane and, on
+uneven terrain, a grid over the grassed cells that follows the height map (6.4.4)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,18 @@ import numpy as np
 
 from render.shaders import load_program
 from render.uniforms import FrameUniforms
+
+MESH = 256  # grid quads per side over the grassed cells
+
+
+def grid_mesh(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices (0 … 1)² and triangle indices of an n × n grid."""
+    c = np.linspace(0.0, 1.0, n + 1, dtype=np.float32)
+    u, v = np.meshgrid(c, c, indexing="xy")
+    verts = np.stack([u.ravel(), v.ravel()], axis=1)
+    i = np.arange(n)[:, None] * (n + 1) + np.arange(n)[None, :]  # lower-left of each quad
+    quads = np.stack([i, i + 1, i + n + 1, i + 1, i + n + 2, i + n + 1], axis=-1)
+    return verts, quads.astype(np.uint32).ravel()
 
 
 class GroundRenderer:
@@ -18,6 +31,15 @@ class GroundRenderer:
         corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype=np.float32)
         self.vbo = ctx.buffer(corners.tobytes())
         self.vao = ctx.vertex_array(self.program, [(self.vbo, "2f", "in_corner")])
+        verts, indices = grid_mesh(MESH)
+        self.mesh_vbo = ctx.buffer(verts.tobytes())
+        self.mesh_ibo = ctx.buffer(indices.tobytes())
+        self.mesh_vao = ctx.vertex_array(
+            self.program,
+            [(self.mesh_vbo, "2f", "in_corner")],
+            index_buffer=self.mesh_ibo,
+            index_element_size=4,
+        )
         self.grass_rect = (0.0, 0.0, 0.0, 0.0)
 
     def draw(self, frame: FrameUniforms) -> None:
@@ -34,9 +56,18 @@ class GroundRenderer:
         # pushed back a little in depth: grass lying on it (the image-based quads, the volume's
         # floor) must win over the soil even far away, where depth precision is coarse
         self.ctx.polygon_offset = (2.0, 4.0)
+        uneven = frame.height_scale > 0
+        p["u_mesh"].value = 0.0
+        # on uneven ground the plane sinks a little so the grid over the cells lies on top
+        p["u_sink"].value = 0.02 if uneven else 0.0
         self.vao.render(moderngl.TRIANGLE_STRIP)
+        if uneven:
+            p["u_mesh"].value = 1.0
+            self.mesh_vao.render(moderngl.TRIANGLES)
         self.ctx.polygon_offset = (0.0, 0.0)
 
     def release(self) -> None:
+        for obj in (self.mesh_vao, self.mesh_vbo, self.mesh_ibo):
+            obj.release()
         self.vao.release()
         self.vbo.release()

@@ -4,15 +4,16 @@ textured with the horizontal slice; alpha-to-coverage under MSAA like the geomet
 from __future__ import annotations
 
 import moderngl
-import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
+from render.ground import grid_mesh
 from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import TOP_HEIGHT
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
+GRID = 16  # quads per side of one (macro-)cell's slice
 
 
 class ImageRenderer(InstancedRenderer):
@@ -25,7 +26,10 @@ class ImageRenderer(InstancedRenderer):
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
         self.program = load_program(ctx, "image.glsl")
-        self.vbo = ctx.buffer(np.array([0, 0, 1, 0, 0, 1, 1, 1], np.float32).tobytes())
+        # a grid rather than one quad per instance: its vertices follow uneven ground (6.4.4)
+        verts, indices = grid_mesh(GRID)
+        self.vbo = ctx.buffer(verts.tobytes())
+        self.ibo = ctx.buffer(indices.tobytes())
         self.instances: moderngl.Buffer | None = None
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
@@ -36,6 +40,8 @@ class ImageRenderer(InstancedRenderer):
         return self.ctx.vertex_array(
             self.program,
             [(self.vbo, "2f", "in_corner"), instance_layout(self.program, self.instances)],
+            index_buffer=self.ibo,
+            index_element_size=4,
         )
 
     def prepare(self, frame: FrameUniforms) -> None:
@@ -58,12 +64,12 @@ class ImageRenderer(InstancedRenderer):
 
     def draw(self) -> None:
         if self.vao is not None and self.textures is not None and self.instance_count:
-            self.vao.render(moderngl.TRIANGLE_STRIP, instances=self.instance_count)
+            self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
 
     def finalize(self) -> None:
         self.ctx.disable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
 
     def release(self) -> None:
-        for obj in (self.vao, self.instances, self.vbo):
+        for obj in (self.vao, self.instances, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()

@@ -23,6 +23,7 @@ class FrameUniforms:
     technique_view: bool = False
     viewport_height: int = 1  # pixels, for the volume renderer's mip level
     fov_y: float = 50.0  # degrees
+    height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""
@@ -36,6 +37,7 @@ class FrameUniforms:
             "u_ao_impact": self.lighting.blade_ao_impact,
             "u_ao_height": self.lighting.blade_ao_height,
             "u_design": DESIGN_UNIT,
+            "u_height_scale": float(self.height_scale),
             "u_technique_view": 1.0 if self.technique_view else 0.0,
             "u_technique_color": tuple(technique_color),
         }

@@ -34,6 +34,7 @@ out vec3 v_diffuse;
 flat out float v_threshold;
 flat out float v_opacity;
 flat out float v_density;      // local density at the root, for AO_blade
+out float v_height;            // height above the ground, for AO_blade
 
 void main() {
     vec3 s = vec3(in_mirror.x, 1.0, in_mirror.y);
@@ -53,6 +54,7 @@ void main() {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: the blade vanishes
         v_world = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_color = vec3(0.0);
         v_threshold = 1.0;
+        v_height = 0.0;
         v_map_color = vec4(0.0); v_ambient = vec3(1.0); v_diffuse = vec3(1.0);
         return;
     }
@@ -64,6 +66,10 @@ void main() {
     v_map_color = design_color(duv); v_ambient = design_ambient(duv); v_diffuse = design_diffuse(duv);
 #endif
     vec3 world = (vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size;
+#ifndef CAPTURE
+    world.y += ground_height(design_uv(in_config, root));  // eq. 6.13: the root's height
+#endif
+    v_height = local.y * u_cell_size;
     v_world = world;
     v_normal = in_normal * s;
     v_uv = in_uv;

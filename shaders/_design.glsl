@@ -8,6 +8,10 @@ vec4 design_color(vec2 uv) { return texture(u_design, vec3(uv, 1.0)); }
 vec3 design_ambient(vec2 uv) { return texture(u_design, vec3(uv, 2.0)).rgb; }
 vec3 design_diffuse(vec2 uv) { return texture(u_design, vec3(uv, 3.0)).rgb; }
 
+// Terrain height in world units at a design-map uv (thesis 6.4.4, eq. 6.13 / 6.16).
+uniform float u_height_scale;
+float ground_height(vec2 uv) { return u_height_scale * textureLod(u_design, vec3(uv, 4.0), 0.0).r; }
+
 // C = A_c · C_c + (1 − A_c) · M_b · C_b (eq. 6.8): the blade's modulated colour blended with the
 // colour-modulation map by the map's alpha.
 vec3 modulate(vec3 blade, vec4 map) { return mix(blade, map.rgb, map.a); }

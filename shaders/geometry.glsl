@@ -24,6 +24,7 @@ in vec3 v_ambient;
 in vec3 v_diffuse;
 flat in float v_opacity;
 flat in float v_density;
+in float v_height;
 
 out vec4 f_color;
 
@@ -34,7 +35,7 @@ void main() {
     vec3 n = normalize(v_normal);
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
     vec3 albedo = mix(v_color * tex.rgb, v_map_color.rgb, v_map_color.a);  // eq. 6.8
-    vec3 lit = shade(albedo, n, ao_blade(v_world.y, v_density), v_ambient, v_diffuse);
+    vec3 lit = shade(albedo, n, ao_blade(v_height, v_density), v_ambient, v_diffuse);
     f_color = vec4(technique(lit), tex.a);
 }
 

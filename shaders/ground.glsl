@@ -8,12 +8,20 @@
 
 uniform mat4 u_view_proj;
 uniform float u_extent;
+uniform vec4 u_grass_rect;     // xmin, zmin, xmax, zmax of the grassed cells
+uniform float u_mesh;          // 1: this is the grid over the grassed cells, following the heights
+uniform float u_sink;          // how far the surrounding plane lies below y = 0
 
-in vec2 in_corner;
+in vec2 in_corner;             // -1 … 1 (the plane) or 0 … 1 (the grid over the cells)
 out vec3 v_world;
 
 void main() {
-    v_world = vec3(in_corner.x * u_extent, 0.0, in_corner.y * u_extent);
+    if (u_mesh > 0.5) {
+        vec2 p = mix(u_grass_rect.xy, u_grass_rect.zw, in_corner);
+        v_world = vec3(p.x, ground_height(in_corner), p.y);
+    } else {
+        v_world = vec3(in_corner.x * u_extent, -u_sink, in_corner.y * u_extent);
+    }
     gl_Position = u_view_proj * vec4(v_world, 1.0);
 }
 
@@ -24,6 +32,7 @@ uniform vec3 u_eye;
 uniform vec3 u_fog_color;
 uniform float u_fog_distance;
 uniform vec4 u_grass_rect;    // xmin, zmin, xmax, zmax of the grassed cells
+uniform float u_mesh;
 uniform vec3 u_under_grass;   // soil colour under the grass
 
 in vec3 v_world;
@@ -31,8 +40,8 @@ out vec4 f_color;
 
 void main() {
     vec2 p = v_world.xz;
-    float inside = step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
-                 * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w);
+    float inside = max(u_mesh, step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
+                 * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w));
     // the design maps span the grassed rectangle: bare where the density map is, lit by the maps
     vec2 uv = (p - u_grass_rect.xy) / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6));
     float grass = inside * design_density(uv);

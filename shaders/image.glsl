@@ -33,7 +33,9 @@ void main() {
     v_density = in_cell_density;
     v_lod = in_lod;
     v_mirror = in_mirror;
-    vec3 world = vec3(in_origin.x + v_patch.x, u_lift, in_origin.y + v_patch.y);
+    // the grid's vertices follow the ground (6.4.4; the thesis displaces the four corners)
+    float ground = ground_height(v_design);
+    vec3 world = vec3(in_origin.x + v_patch.x, u_lift + ground, in_origin.y + v_patch.y);
     v_world = world;
     gl_Position = u_view_proj * vec4(world, 1.0);
 }

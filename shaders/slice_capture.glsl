@@ -16,6 +16,7 @@ uniform sampler2D u_blade;
 uniform float u_alpha_ref;
 
 in vec3 v_world;
+in float v_height;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec3 v_color;
@@ -31,7 +32,7 @@ void main() {
     vec3 n = normalize(v_normal);
     f_color = vec4(v_color * tex.rgb, tex.a);
     f_normal = vec4(n * 0.5 + 0.5, 1.0);
-    f_threshold = vec4(v_threshold, v_world.y, 0.0, 1.0);  // threshold, height above ground
+    f_threshold = vec4(v_threshold, v_height, 0.0, 1.0);  // threshold, height above ground
 }
 
 #endif

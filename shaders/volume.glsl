@@ -19,6 +19,7 @@ in vec2 in_lod;                // per instance: transition (w, side)
 in vec2 in_size;               // per instance: (macro-)cell extent in cells along x, z
 in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
 in vec4 in_config;             // per instance: config transform into the design maps
+in vec2 in_ground;             // per instance: lowest ground, unplanarity (eq. 6.14)
 
 out vec3 v_patch;              // position on the cuboid in patch space
 flat out vec2 v_origin;
@@ -27,16 +28,19 @@ flat out vec2 v_size;
 flat out vec2 v_lod;
 flat out vec2 v_mirror;
 flat out vec4 v_config;
+flat out vec2 v_ground;
 
 void main() {
-    v_patch = in_corner * vec3(in_size.x, u_height, in_size.y);
+    // eq. 6.14: the cuboid reaches from the lowest ground to the grass over the highest
+    v_patch = in_corner * vec3(in_size.x, u_height + in_ground.y, in_size.y);
     v_origin = in_origin;
     v_density = in_cell_density;
     v_size = in_size;
     v_lod = in_lod;
     v_mirror = in_mirror;
     v_config = in_config;
-    gl_Position = u_view_proj * vec4(v_patch + vec3(in_origin.x, 0.0, in_origin.y), 1.0);
+    v_ground = in_ground;
+    gl_Position = u_view_proj * vec4(v_patch + vec3(in_origin.x, in_ground.x, in_origin.y), 1.0);
 }
 
 #elif defined FRAGMENT_SHADER
@@ -70,6 +74,7 @@ flat in vec2 v_size;
 flat in vec2 v_lod;
 flat in vec2 v_mirror;
 flat in vec4 v_config;
+flat in vec2 v_ground;
 
 out vec4 f_color;
 
@@ -100,7 +105,9 @@ vec4 horizontal(vec3 g, vec3 d, float lod) {
 }
 
 void main() {
-    vec3 eye = u_eye - vec3(v_origin.x, 0.0, v_origin.y);
+    vec3 base = vec3(v_origin.x, v_ground.x, v_origin.y);  // the cuboid's corner in the world
+    vec3 eye = u_eye - base;
+    float top = u_height + v_ground.y;
     vec3 d = normalize(v_patch - eye);                        // eq. 5.5 (no rotation yet)
     vec3 e = v_patch;                                         // eq. 5.4
     float p_inum = 1.0 / u_slices;                            // eq. 5.7
@@ -109,14 +116,16 @@ void main() {
     vec2 pd = sign(d.xz);                                     // eq. 5.10
     vec2 pi = pm + (pd + abs(pd)) * p_inum2;                  // eqs. 5.11-5.12
     vec2 safe_d = vec2(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.z) < 1e-6 ? 1e-6 : d.z);
-    float lod = max(log2(distance(u_eye, v_patch + vec3(v_origin.x, 0, v_origin.y)) * u_lod_scale), 0.0);
+    float lod = max(log2(distance(u_eye, v_patch + base) * u_lod_scale), 0.0);
     float rows = float(textureSize(u_x_color, 0).y) / u_slices;
 
     vec3 color = vec3(0.0);
     float alpha = 0.0;
     float depth_lambda = -1.0;
-    // where the ray crosses the horizontal slice's plane (never, if it starts below or rises)
-    float floor_lambda = (d.y < -1e-4 && e.y > u_floor) ? (u_floor - e.y) / d.y : 1e30;
+    // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
+    // on uneven ground the plane follows the ground where the ray enters
+    float floor_y = u_floor + ground_height(design_uv(v_config, e.xz)) - v_ground.x;
+    float floor_lambda = (d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
         bool hit_x = w.x < w.y;
@@ -136,24 +145,30 @@ void main() {
         // A ray may run on into the neighbouring cells (the patch tiles): a cell's fragment that
         // stopped at its own side wall would leave a gap, since the neighbour's wall behind it
         // fails the depth test once this fragment wrote depth.
-        if (h.y < 0.0 || h.y > u_height || any(lessThan(h.xz, vec2(-u_overrun)))
+        if (h.y < 0.0 || h.y > top || any(lessThan(h.xz, vec2(-u_overrun)))
             || any(greaterThan(h.xz, v_size + u_overrun))) break;
+        vec2 duv = design_uv(v_config, h.xz);
+        // eqs. 6.16-6.18: shift the lookup by the ground under the hit; outside the grass: none
+        float y = h.y - (ground_height(duv) - v_ground.x);
+        if (y < 0.0 || y > u_height) {
+            if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
+            continue;
+        }
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
         // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
         if ((hit_x ? v_mirror.x : v_mirror.y) < 0.0) slice = u_slices - 1.0 - slice;
         float u = fract((hit_x ? v_mirror.y * h.z : v_mirror.x * h.x));
-        vec2 uv = atlas_uv(u, h.y / u_height, slice, rows, lod);
+        vec2 uv = atlas_uv(u, y / u_height, slice, rows, lod);
         vec4 c = hit_x ? textureLod(u_x_color, uv, lod) : textureLod(u_z_color, uv, lod);
         vec4 data = hit_x ? textureLod(u_x_data, uv, lod) : textureLod(u_z_data, uv, lod);
-        vec2 duv = design_uv(v_config, h.xz);
         float density = u_density * v_density * design_density(duv);
         c.a *= lod_opacity(data.a, density, v_lod);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
             vec3 albedo = modulate(c.rgb, design_color(duv));
-            vec3 lit = technique(shade(albedo, n, ao_blade(h.y, density),
+            vec3 lit = technique(shade(albedo, n, ao_blade(y, density),
                                        design_ambient(duv), design_diffuse(duv)));
             color += (1.0 - alpha) * c.a * lit;               // eq. 5.19 (colour is bled)
             alpha += (1.0 - alpha) * c.a;                     // eq. 5.20
@@ -173,7 +188,7 @@ void main() {
     }
     if (alpha < 0.01) discard;
     if (depth_lambda < 0.0) depth_lambda = 0.0;
-    vec3 world = e + depth_lambda * d + vec3(v_origin.x, 0.0, v_origin.y);
+    vec3 world = e + depth_lambda * d + base;
     vec4 clip = u_view_proj * vec4(world, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
     f_color = vec4(color, alpha);                             // premultiplied
