@@ -1,0 +1,130 @@
+"""Grass on uneven ground (thesis 6.4.4): roots on the terrain surface in all three
+representations, and the volume's shifted slice lookup at the blades' heights. A steep ramp
+rising 4 units over 8 cells along z, seen from the side and from above the side."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from app.scenes import get_scene
+from core.camera import Camera
+
+BASE = get_scene("patch-grid")
+SCALE = 4.0
+SCENE = dataclasses.replace(
+    BASE,
+    params=BASE.params.replace(blade_count=1200, tilt_max=10.0),
+    height_map=lambda w, h: np.tile(((np.arange(h) + 0.5) / h)[:, None], (1, w)),
+    height_scale=SCALE,
+    map_size=(64, 64),
+    mirror_seed=None,
+    tint=0.0,
+)
+SIZE = (240, 200)
+# far away and narrow: nearly orthographic, so every cell along the view projects alike
+SIDE = Camera.from_eye_target((300.0, 2.0, 0.0), (0.0, 2.0, 0.0), fov_y=2.0, near=250.0, far=350.0)
+ABOVE = Camera.from_eye_target((14.0, 9.0, 0.0), (0.0, 1.5, 0.0), fov_y=50.0)
+
+
+def ground(z):
+    return SCALE * np.clip((z + 4.0) / 8.0, 0.0, 1.0)
+
+
+def render(headless, only, camera, density=1.0):
+    headless.pipeline.set_only(only)
+    headless.load(SCENE, density=density)
+    image, _ = headless.render(camera, SIZE)
+    return image
+
+
+@pytest.fixture
+def restore(headless):
+    yield
+    headless.pipeline.set_only("geometry")
+    headless.load(BASE)
+
+
+def grass(image, bare):
+    return np.abs(image.astype(int) - bare.astype(int)).max(axis=-1) > 12
+
+
+def top_heights(mask, camera):
+    """Per image column with grass: world z of the column and world height of its topmost grass
+    pixel, read through the nearly orthographic side camera."""
+    w, h = SIZE
+    half = np.tan(np.radians(camera.fov_y) / 2) * np.linalg.norm(
+        camera.eye - np.asarray(camera.target)
+    )
+    cols = np.nonzero(mask.any(axis=0))[0]
+    first = mask[:, cols].argmax(axis=0)
+    y = camera.target[1] + half * (1 - 2 * (first + 0.5) / h)
+    z = half * (w / h) * (1 - 2 * (cols + 0.5) / w)  # looking along -x: +z is to the left
+    return z, y
+
+
+@pytest.mark.parametrize("only", ["geometry", "volume"])
+def test_grass_stands_on_the_ramp_seen_from_the_side(headless, ctx, restore, only):
+    patch_height = headless.load(SCENE).height
+    bare = render(headless, only, SIDE, density=0.0)
+    image = render(headless, only, SIDE)
+    z, top = top_heights(grass(image, bare), SIDE)
+    on_ramp = (z > -3.5) & (z < 3.5)
+    assert on_ramp.sum() > 100
+    above_ground = top[on_ramp] - ground(z[on_ramp])
+    # the tallest blade of a column of eight cells stands about the patch height over the ground:
+    # not at 0 (sunk into the ramp) nor at the ramp's height plus more (floating or lifted twice)
+    assert np.median(above_ground) == pytest.approx(patch_height, abs=0.1)
+    assert np.percentile(np.abs(above_ground - patch_height), 90) < 0.2
+
+
+def test_volume_lookup_matches_the_blades_heights(headless, ctx, restore):
+    bare = render(headless, "geometry", SIDE, density=0.0)
+    geo = render(headless, "geometry", SIDE)
+    vol = render(headless, "volume", SIDE)
+    zg, tg = top_heights(grass(geo, bare), SIDE)
+    zv, tv = top_heights(grass(vol, bare), SIDE)
+    both = np.intersect1d(zg.round(3), zv.round(3))
+    g = dict(zip(zg.round(3), tg, strict=True))
+    v = dict(zip(zv.round(3), tv, strict=True))
+    diff = np.array([v[k] - g[k] for k in both if -3.5 < k < 3.5])
+    assert len(diff) > 100
+    assert abs(np.median(diff)) < 0.05  # the silhouettes agree to about a pixel's worth
+
+
+def ramp_pixels(camera):
+    """Pixels whose ray meets the ramp's surface inside (True) and outside (False) its cells,
+    with a margin of half a cell either way left out (None as -1)."""
+    w, h = SIZE
+    inv = np.linalg.inv(camera.projection(w / h) @ camera.view())
+    xs = (np.arange(w) + 0.5) / w * 2 - 1
+    ys = 1 - (np.arange(h) + 0.5) / h * 2
+    gx, gy = np.meshgrid(xs, ys)
+    far = np.stack([gx, gy, np.ones_like(gx), np.ones_like(gx)], -1) @ inv.T
+    d = far[..., :3] / far[..., 3:] - camera.eye
+    e = camera.eye
+    # y = 0.5 z + 2 over the cells: e.y + t d.y = 0.5 (e.z + t d.z) + 2
+    t = (0.5 * e[2] + 2 - e[1]) / (d[..., 1] - 0.5 * d[..., 2])
+    p = e + t[..., None] * d
+    inside = (t > 0) & (np.abs(p[..., 0]) < 3.5) & (np.abs(p[..., 2]) < 3.5)
+    # off the ramp: the ray meets the plain ground (y = 0) and passes nowhere near the ramp's box
+    t0 = -e[1] / d[..., 1]
+    lo, hi = np.array([-4.5, -0.1, -4.5]), np.array([4.5, SCALE + 0.6, 4.5])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a, b = (lo - e) / d, (hi - e) / d
+    near = np.nanmax(np.minimum(a, b), axis=-1)
+    far_ = np.nanmin(np.maximum(a, b), axis=-1)
+    misses = (far_ < near) | (far_ < 0)
+    beside = (t0 > 0) & misses
+    return inside, beside
+
+
+@pytest.mark.parametrize("only", ["geometry", "volume", "image"])
+def test_grass_covers_the_ramp_and_nothing_beside_it(headless, ctx, restore, only):
+    bare = render(headless, only, ABOVE, density=0.0)
+    image = render(headless, only, ABOVE)
+    mask = grass(image, bare)
+    on_ramp, beside = ramp_pixels(ABOVE)
+    assert on_ramp.sum() > 3000 and beside.sum() > 3000
+    assert mask[on_ramp].mean() > 0.8  # grass lies on the ramp, not sunk under it
+    assert mask[beside].mean() < 0.02  # nor floating in front of the ground beside it
