@@ -282,6 +282,49 @@ SCENES["meadow"] = Scene(
         )
     },
 )
+
+
+def _landscape_heights(width: int, height: int) -> np.ndarray:
+    from core.heights import hills
+
+    return hills(width, seed=11, period=5)[:height, :width]
+
+
+SCENES["landscape"] = Scene(
+    name="landscape",
+    description="1024 × 1024 cells of 800-blade grass over large hills, volume to the horizon",
+    params=PRESETS[DEFAULT_PRESET].replace(blade_count=800),
+    grid=(1024, 1024),
+    cameras={
+        "valley": CameraSpec((0.0, 40.0, 480.0), (0.0, 25.0, 300.0), 2500.0, 0.1),
+        "ridge": CameraSpec((-300.0, 120.0, -300.0), (0.0, 30.0, 0.0), 2500.0, 0.2),
+    },
+    default_camera="valley",
+    # no image-based level: on large hills its flat macro-cells would split to single cells;
+    # volume macro-cells stay on gentle ground too: a tall extruded cuboid leaves the rays many
+    # empty steps above the grass before they reach it
+    lod=LodConfig(
+        (
+            LodLevel("geometry", 0.0, 15.0),
+            LodLevel("volume", 10.0, 60.0, slices=8, macro=8, max_unplanarity=5.0),
+            LodLevel("volume", 45.0, 200.0, slices=2, macro=32, max_unplanarity=5.0),
+            LodLevel("volume", 150.0, None, slices=1, macro=64, max_unplanarity=5.0),
+        )
+    ),
+    mirror_seed=9,
+    tint=0.3,
+    map_size=(512, 512),
+    height_map=_landscape_heights,
+    height_scale=80.0,
+    fog_distance=900.0,
+    paths={
+        "glide": (
+            CameraSpec((0.0, 40.0, 480.0), (0.0, 25.0, 300.0), 2500.0, 0.1),
+            CameraSpec((0.0, 60.0, 0.0), (100.0, 30.0, -200.0), 2500.0, 0.1),
+            CameraSpec((300.0, 90.0, -300.0), (0.0, 30.0, 0.0), 2500.0, 0.2),
+        )
+    },
+)
 DEFAULT_SCENE = "patch-grid"
 
 

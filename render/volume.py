@@ -34,6 +34,7 @@ class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 24
+    skip_steps = 8  # height-map steps over empty space in extruded cuboids (volume.glsl)
     opaque = 0.95
     # The horizontal slice is a layer of the volume at this fraction of the grass height: rays
     # from above meet it where, among vertical slices alone, they would fall between them
@@ -86,6 +87,7 @@ class VolumeRenderer(InstancedRenderer):
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.x.color.width
         p["u_floor"].value = self.floor * float(t.height)
+        p["u_skip_steps"].value = self.skip_steps
         p["u_top_height"].value = TOP_HEIGHT * float(t.height)
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.x.color.width)
         for unit, (name, tex) in enumerate(

@@ -65,6 +65,7 @@ uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
 uniform sampler2D u_top_data;
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_floor;         // height of the horizontal slice inside the volume
+uniform int u_skip_steps;      // coarse steps over the height map before the slices
 uniform float u_top_height;    // typical height of what the horizontal slice shows (AO_blade)
 
 in vec3 v_patch;
@@ -110,6 +111,24 @@ void main() {
     float top = u_height + v_ground.y;
     vec3 d = normalize(v_patch - eye);                        // eq. 5.5 (no rotation yet)
     vec3 e = v_patch;                                         // eq. 5.4
+    // On uneven ground the extruded cuboid holds empty space above the grass: march the ray
+    // over the height map in a few coarse steps and start the slice stepping just before it
+    // reaches the grass layer, or a tall cuboid would use up the steps in empty air.
+    if (v_ground.y > 0.05 * u_height) {
+        vec3 inv = 1.0 / vec3(abs(d.x) < 1e-6 ? 1e-6 : d.x, d.y, abs(d.z) < 1e-6 ? 1e-6 : d.z);
+        vec3 t0 = (vec3(0.0) - e) * inv;
+        vec3 t1 = (vec3(v_size.x, top, v_size.y) - e) * inv;
+        vec3 tmax = max(t0, t1);
+        float leave = max(min(min(tmax.x, tmax.y), tmax.z), 0.0);
+        float start = 0.0;
+        for (int k = 1; k <= u_skip_steps; ++k) {
+            float lam = leave * float(k) / float(u_skip_steps);
+            vec3 p = e + lam * d;
+            if (p.y < ground_height(design_uv(v_config, p.xz)) - v_ground.x + u_height) break;
+            start = lam;
+        }
+        e += start * d;
+    }
     float p_inum = 1.0 / u_slices;                            // eq. 5.7
     float p_inum2 = 0.5 * p_inum;                             // eq. 5.8
     vec2 pm = floor((e.xz - p_inum2) * u_slices) * p_inum + p_inum2;  // eq. 5.9
