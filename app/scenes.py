@@ -261,7 +261,8 @@ SCENES["meadow"] = Scene(
             LodLevel("geometry", 0.0, 7.0),
             LodLevel("volume", 5.0, 22.0, slices=8, macro=4),
             LodLevel("image", 18.0, None, macro=16, max_unplanarity=0.6),
-        )
+        ),
+        silhouettes=True,
     ),
     mirror_seed=5,
     tint=0.25,

@@ -85,6 +85,9 @@ class LodConfig:
         LodLevel("image", 5.5, None),
     )
     epsilon: float = 0.05
+    # thesis 6.4.6: image-based cells whose grass reaches above the eye are drawn by the last
+    # volume level as well, so hilltops keep their silhouette
+    silhouettes: bool = False
 
     def __post_init__(self) -> None:
         levels = self.levels

@@ -114,10 +114,27 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
         keep = flags != 0
         ix, iz, parent = tree.children(level, ix[keep], iz[keep])
         flags = flags[keep][parent]
-    return DrawList(
-        [np.concatenate(parts) if parts else np.zeros(0, INSTANCE_DTYPE) for parts in out],
-        visited,
-    )
+    levels_out = [np.concatenate(parts) if parts else np.zeros(0, INSTANCE_DTYPE) for parts in out]
+    if config.silhouettes:
+        _silhouettes(levels_out, config, eye, terrain.grass_height)
+    return DrawList(levels_out, visited)
+
+
+def _silhouettes(out: list[np.ndarray], config: LodConfig, eye, grass_height: float) -> None:
+    """Hilltop silhouettes (thesis 6.4.6): image-based (macro-)cells whose grass reaches above
+    the eye, seen from the side and so possibly on the skyline, are added to the last volume
+    level as whole instances (every blade), drawn over their flat image-based slice."""
+    kinds = [lv.representation for lv in config.levels]
+    if "image" not in kinds or "volume" not in kinds:
+        return
+    image = kinds.index("image")
+    volume = len(kinds) - 1 - kinds[::-1].index("volume")
+    cells = out[image]
+    top = cells["ground"][:, 0] + cells["ground"][:, 1] + grass_height
+    extra = cells[top > eye[1]].copy()
+    extra["lod"] = (ALL_IN, 0.0)
+    if extra.size:
+        out[volume] = np.concatenate([out[volume], extra])
 
 
 def _macro(t, span, active, dmin, dmax, begin, end, macro) -> np.ndarray:

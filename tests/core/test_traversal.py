@@ -193,3 +193,29 @@ def test_culling_never_drops_a_visible_cell(ex, ez, height, yaw, pitch, aspect):
         for cell in map(tuple, cells[seen]):
             assert cell in kept, f"level {level}: visible cell {cell} was culled"
     assert culled.visited <= full.visited
+
+
+def test_hilltops_seen_from_below_get_volume_silhouettes():
+    from core.heights import hills
+
+    heights = hills(64, seed=2)
+    terrain = Terrain(64, 64, heights=heights, height_scale=12.0, grass_height=0.4)
+    levels = (
+        LodLevel("geometry", 0, 4),
+        LodLevel("volume", 3, 12, macro=4),
+        LodLevel("image", 10, None, macro=8),
+    )
+    plain = LodConfig(levels)
+    with_tops = LodConfig(levels, silhouettes=True)
+    low_eye = np.array([2.0, 8.0, 2.0])
+    a = traverse(terrain, low_eye, plain)
+    b = traverse(terrain, low_eye, with_tops)
+    image = a.levels[2]
+    reaching = image[image["ground"].sum(axis=1) + 0.4 > low_eye[1]]
+    assert reaching.size > 0 and reaching.size < image.size
+    assert b.levels[1].size == a.levels[1].size + reaching.size
+    assert np.array_equal(b.levels[2], a.levels[2])  # the image-based cells stay
+    high_eye = np.array([2.0, 40.0, 2.0])  # from above no cell is on the skyline
+    assert traverse(terrain, high_eye, with_tops).levels[1].size == (
+        traverse(terrain, high_eye, plain).levels[1].size
+    )
