@@ -8,7 +8,7 @@ from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoCommand, QUndoStack
 from PySide6.QtWidgets import QApplication, QDockWidget, QFileDialog, QLabel, QMainWindow
 
-from app.scenes import DEFAULT_SCENE, Scene, get_scene
+from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
 from core.design import PatchDesign
 from core.params import PatchParams, SliceParams
 from core.patch import GrassPatch, generate_patch
@@ -123,10 +123,7 @@ class DesignerWindow(QMainWindow):
         self.patch: GrassPatch | None = None
 
         self.viewport = GrassViewport(scene.camera())
-        self.viewport.set_terrain(scene.terrain())
-        self.viewport.set_design_maps(scene.design_maps())
-        self.viewport.set_props(scene.prop_boxes())
-        self.viewport.set_lod(scene.lod)
+        self._show_scene(scene)
         self.viewport.set_density(self.design.density)
         self.viewport.set_slice_params(self.design.slices)
         self._converting = ""
@@ -162,6 +159,11 @@ class DesignerWindow(QMainWindow):
         save.triggered.connect(self._save_image)
         quit_ = QAction("&Quit", self, shortcut=QKeySequence.StandardKey.Quit)
         quit_.triggered.connect(self.close)
+        scenes = file_menu.addMenu("Open built-in &scene")
+        for name in SCENES:
+            act = QAction(f"{name} — {SCENES[name].description}", self)
+            act.triggered.connect(lambda _=False, n=name: self.open_scene(get_scene(n)))
+            scenes.addAction(act)
         file_menu.addActions([save, quit_])
         edit = self.menuBar().addMenu("&Edit")
         undo = self.undo_stack.createUndoAction(self, "&Undo")
@@ -173,12 +175,8 @@ class DesignerWindow(QMainWindow):
         reset = QAction("&Reset camera", self, shortcut=QKeySequence("Home"))
         reset.triggered.connect(lambda: self.viewport.set_camera(self.scene.camera()))
         view.addAction(reset)
-        for name in self.scene.cameras:
-            act = QAction(f"Camera: {name}", self)
-            act.triggered.connect(
-                lambda _=False, n=name: self.viewport.set_camera(self.scene.camera(n))
-            )
-            view.addAction(act)
+        self.camera_menu = view.addMenu("&Cameras")
+        self._fill_camera_menu()
         view.addSeparator()
         group = QActionGroup(self)
         self.mode_actions: dict[str, QAction] = {}
@@ -199,6 +197,39 @@ class DesignerWindow(QMainWindow):
         view.addAction(self.techniques_action)
         view.addSeparator()
         view.addAction(dock.toggleViewAction())
+
+    def _fill_camera_menu(self) -> None:
+        self.camera_menu.clear()
+        for name in self.scene.cameras:
+            act = QAction(name, self)
+            act.triggered.connect(
+                lambda _=False, n=name: self.viewport.set_camera(self.scene.camera(n))
+            )
+            self.camera_menu.addAction(act)
+
+    def _show_scene(self, scene: Scene) -> None:
+        """Hand a scene's terrain, maps, props, LOD levels and fog to the viewport."""
+        self.viewport.set_terrain(scene.terrain())
+        self.viewport.set_design_maps(scene.design_maps())
+        self.viewport.set_props(scene.prop_boxes())
+        self.viewport.set_lod(scene.lod)
+        self.viewport.set_fog(scene.fog_distance)
+
+    def open_scene(self, scene: Scene) -> None:
+        """Replace the scene (its patch, terrain, maps, cameras); edits of the old one cannot
+        be undone across the switch."""
+        QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
+        try:
+            self.scene = scene
+            self.setWindowTitle(f"Sward — {scene.name}")
+            self.undo_stack.clear()
+            self._show_scene(scene)
+            self.viewport.set_camera(scene.camera())
+            self._fill_camera_menu()
+            self.design.density = scene.density
+            self.design.params = scene.params
+        finally:
+            QApplication.restoreOverrideCursor()
 
     # -- edits become undoable commands ------------------------------------------------------
     def _push_params(self, params: PatchParams) -> None:

@@ -326,7 +326,7 @@ SCENES["landscape"] = Scene(
         )
     },
 )
-DEFAULT_SCENE = "patch-grid"
+DEFAULT_SCENE = "meadow"
 
 
 def get_scene(name: str) -> Scene:

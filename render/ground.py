@@ -9,7 +9,7 @@ import numpy as np
 from render.shaders import load_program
 from render.uniforms import FrameUniforms
 
-MESH = 256  # grid quads per side over the grassed cells
+MESH = 128  # grid quads per side over the grassed cells
 
 
 def grid_mesh(n: int) -> tuple[np.ndarray, np.ndarray]:

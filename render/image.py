@@ -13,7 +13,7 @@ from render.uniforms import FrameUniforms
 from render.volume import TOP_HEIGHT
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
-GRID = 16  # quads per side of one (macro-)cell's slice
+GRID = 6  # quads per side of one (macro-)cell's slice
 
 
 class ImageRenderer(InstancedRenderer):

@@ -33,7 +33,7 @@ TOP_HEIGHT = 0.7
 class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
-    max_steps = 24
+    max_steps = 12
     skip_steps = 8  # height-map steps over empty space in extruded cuboids (volume.glsl)
     opaque = 0.95
     # The horizontal slice is a layer of the volume at this fraction of the grass height: rays

@@ -7,6 +7,7 @@ while the camera moves they are drawn without MSAA (preview), then once more at 
 
 from __future__ import annotations
 
+import dataclasses
 from typing import ClassVar
 
 import numpy as np
@@ -60,6 +61,7 @@ class GrassViewport(QOpenGLWidget):
         self._slice_params = SliceParams()
         self._maps: DesignMaps | None = None
         self._props: np.ndarray | None = None
+        self._fog: float | None = None
         self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
@@ -110,6 +112,14 @@ class GrassViewport(QOpenGLWidget):
         self._props = props
         self._upload(lambda pipeline: pipeline.set_props(props))
 
+    def set_fog(self, distance: float) -> None:
+        self._fog = distance
+        if self.pipeline is not None:
+            self.pipeline.lighting = dataclasses.replace(
+                self.pipeline.lighting, fog_distance=distance
+            )
+        self.update()
+
     def set_design_maps(self, maps: DesignMaps) -> None:
         self._maps = maps
         self._upload(lambda pipeline: pipeline.set_design_maps(maps))
@@ -157,6 +167,8 @@ class GrassViewport(QOpenGLWidget):
             pipeline.set_design_maps(self._maps)
         if self._props is not None:
             pipeline.set_props(self._props)
+        if self._fog is not None:
+            pipeline.lighting = dataclasses.replace(pipeline.lighting, fog_distance=self._fog)
         if self._patch is not None:
             pipeline.set_patch(self._patch)
         if self._instances is not None:

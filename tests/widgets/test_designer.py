@@ -137,3 +137,22 @@ def test_slice_count_edit_reconverts_without_blocking_and_undoes(window, qtbot):
     assert window.panel.param("slices").value() == 8
     wait_for_slices(window, qtbot)
     assert window.viewport.pipeline.volume.slices == 8
+
+
+def test_opening_a_built_in_scene_replaces_terrain_cameras_and_patch(window, qtbot):
+    from app.scenes import get_scene
+
+    meadow = get_scene("meadow")
+    window.open_scene(meadow)
+    assert window.windowTitle() == "Sward — meadow"
+    assert [a.text() for a in window.camera_menu.actions()] == list(meadow.cameras)
+    qtbot.waitUntil(
+        lambda: window.patch is not None and window.patch.params == meadow.params, timeout=30000
+    )
+    wait_for_slices(window, qtbot)
+    window.viewport.update()
+    qtbot.waitUntil(lambda: window.viewport.last_stats.c_i > 0, timeout=30000)
+    stats = window.viewport.last_stats
+    assert stats.c_g > 0 and stats.c_v > 0  # the meadow's three LOD levels are drawn
+    assert window.viewport.pipeline.terrain.height_scale == meadow.height_scale
+    assert not window.undo_stack.canUndo()
