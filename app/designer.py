@@ -214,6 +214,9 @@ class DesignerWindow(QMainWindow):
         self.viewport.set_props(scene.prop_boxes())
         self.viewport.set_lod(scene.lod)
         self.viewport.set_fog(scene.fog_distance)
+        self.viewport.set_grass_types(
+            [(generate_patch(kind.params), kind.lod, kind.channel) for kind in scene.grass]
+        )
 
     def open_scene(self, scene: Scene) -> None:
         """Replace the scene (its patch, terrain, maps, cameras); edits of the old one cannot

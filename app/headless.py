@@ -30,6 +30,9 @@ class HeadlessRenderer:
     ) -> GrassPatch:
         patch = generate_patch(params or scene.params)
         self.pipeline.set_patch(patch)
+        self.pipeline.set_grass_types(
+            [(generate_patch(kind.params), kind.lod, kind.channel) for kind in scene.grass]
+        )
         self.pipeline.set_terrain(scene.terrain())
         self.pipeline.set_design_maps(scene.design_maps())
         self.pipeline.set_props(scene.prop_boxes())

@@ -30,6 +30,22 @@ class CameraSpec:
 
 
 @dataclass(frozen=True)
+class GrassType:
+    """A further grass type on the scene's terrain (thesis 6.4.5): its own patch, LOD levels
+    and channel of the density map; it shares the terrain and the light and colour maps."""
+
+    name: str
+    params: PatchParams
+    lod: LodConfig
+    channel: int  # 1 … 3: the density map's channel (0 is the scene's first grass)
+    density_map: Callable[[int, int], np.ndarray] | None = None  # (width, height) -> 0 … 1
+
+    def __post_init__(self) -> None:
+        if not 1 <= self.channel <= 3:
+            raise ValueError(f"grass type {self.name}: density channel must be 1, 2 or 3")
+
+
+@dataclass(frozen=True)
 class Scene:
     name: str
     description: str
@@ -51,6 +67,7 @@ class Scene:
     height_map: Callable[[int, int], np.ndarray] | None = None
     height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
     density_map: Callable[[int, int], np.ndarray] | None = None
+    grass: tuple[GrassType, ...] = ()  # further grass types beside the first
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
@@ -86,6 +103,9 @@ class Scene:
             maps.write("height", 0, 0, heights)
         if self.density_map is not None:
             maps.write("density", 0, 0, self.density_map(*self.map_size))
+        for kind in self.grass:
+            if kind.density_map is not None:
+                maps.write("density", 0, 0, kind.density_map(*self.map_size), channel=kind.channel)
         return maps
 
     def ground_at(self, x: float, z: float) -> float:
@@ -235,6 +255,17 @@ def _meadow_heights(width: int, height: int) -> np.ndarray:
     return hills(width, seed=7, period=3)[:height, :width]
 
 
+def _meadow_clumps(width: int, height: int) -> np.ndarray:
+    """Clumps of tall meadow grass: where a noise rises high, and never on the path."""
+    from core.noise import fractal_noise
+
+    c = (np.arange(width) + 0.5) / width
+    u, v = np.meshgrid(c, (np.arange(height) + 0.5) / height)
+    n = fractal_noise(u, v, period=8, seed=21, octaves=2)
+    clumps = np.clip((n - 0.15) / 0.2, 0.0, 1.0)
+    return (clumps * _meadow_path(width, height)).astype(np.float32)
+
+
 def _meadow_path(width: int, height: int) -> np.ndarray:
     """Full density with a bare, winding footpath across the meadow (thesis Fig. 6.8)."""
     u = (np.arange(width) + 0.5) / width
@@ -270,6 +301,23 @@ SCENES["meadow"] = Scene(
     height_map=_meadow_heights,
     height_scale=3.0,
     density_map=_meadow_path,
+    grass=(
+        GrassType(
+            "tall meadow grass",
+            PRESETS["long thin meadow grass"].replace(
+                blade_count=900, width_min=0.008, width_max=0.014, tip_color=(0.78, 0.72, 0.36)
+            ),
+            LodConfig(
+                (
+                    LodLevel("geometry", 0.0, 6.0),
+                    LodLevel("volume", 4.5, 16.0, slices=4, macro=4),
+                    LodLevel("image", 14.0, None, macro=16, max_unplanarity=0.6),
+                )
+            ),
+            channel=1,
+            density_map=_meadow_clumps,
+        ),
+    ),
     props=(
         ((6.0, 10.0), (1.2, 0.9, 1.0), (0.45, 0.44, 0.42)),
         ((-9.0, -4.0), (2.0, 1.4, 1.6), (0.5, 0.48, 0.45)),

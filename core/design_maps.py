@@ -27,7 +27,8 @@ class MapLayer:
 
 
 LAYERS = (
-    MapLayer("density", 1, (1.0, 0.0, 0.0, 0.0), "local grass density, 0 bare … 1 full"),
+    # one channel per grass type (thesis 6.4.5: several density maps), up to four types
+    MapLayer("density", 4, (1.0, 1.0, 1.0, 1.0), "grass density per type, 0 bare … 1 full"),
     MapLayer("color", 4, (1.0, 1.0, 1.0, 0.0), "colour modulation: RGB and its weight A (eq. 6.8)"),
     MapLayer("ambient", 3, (1.0, 1.0, 1.0, 0.0), "ambient light × scene occlusion (eq. 6.9)"),
     MapLayer("diffuse", 3, (1.0, 1.0, 1.0, 0.0), "diffuse light, e.g. shadows (eq. 6.9)"),
@@ -67,14 +68,27 @@ class DesignMaps:
         view.flags.writeable = False
         return view
 
-    def write(self, name: str, x: int, y: int, values: np.ndarray) -> Rect:
+    def write(
+        self, name: str, x: int, y: int, values: np.ndarray, channel: int | None = None
+    ) -> Rect:
         """Replace a rectangle of one map from (column x, row y) with `values` (rows, columns[,
-        channels]); the part outside the map is dropped. Returns the rectangle written."""
+        channels]); the part outside the map is dropped. Returns the rectangle written.
+
+        The density map has a channel per grass type: (rows, columns) values go to `channel`
+        (the first type's unless given)."""
         i = _index(name)
         channels = LAYERS[i].channels
         values = np.asarray(values, np.float32)
         if values.ndim == 2:
             values = values[..., None]
+        first = 0
+        if name == "density" and values.ndim == 3 and values.shape[2] == 1:
+            first = 0 if channel is None else channel
+            if not 0 <= first < channels:
+                raise ValueError(
+                    f"density channel {first} out of range; grass types 0 … {channels - 1}"
+                )
+            channels = 1
         if values.ndim != 3 or values.shape[2] != channels:
             raise ValueError(
                 f"{name} map values must be (rows, columns, {channels}), got {values.shape}"
@@ -86,7 +100,9 @@ class DesignMaps:
         x1, y1 = min(x + values.shape[1], w), min(y + values.shape[0], h)
         if x1 <= x0 or y1 <= y0:
             return (x0, y0, 0, 0)
-        self.stack[i, y0:y1, x0:x1, :channels] = values[y0 - y : y1 - y, x0 - x : x1 - x]
+        self.stack[i, y0:y1, x0:x1, first : first + channels] = values[
+            y0 - y : y1 - y, x0 - x : x1 - x
+        ]
         rect = (x0, y0, x1 - x0, y1 - y0)
         self.changed.emit(name, rect)
         return rect

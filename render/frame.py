@@ -18,19 +18,18 @@ from core.design_maps import DesignMaps
 from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
-from core.lod import LodConfig, LodLevel
-from core.lod import select as lod_select
+from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from core.terrain import Terrain
-from core.traversal import traverse
 from render.context import release_framebuffer
 from render.conversion import PatchConverter
 from render.design_maps import DesignMapTextures
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
+from render.layer import GrassLayer
 from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -46,22 +45,17 @@ class FramePipeline:
     def __init__(self, ctx: moderngl.Context, samples: int = 4) -> None:
         self.ctx = ctx
         self.samples = max(0, min(samples, ctx.max_samples))
-        self.geometry = GeometryRenderer(ctx)
-        self.volumes: dict[int, VolumeRenderer] = {}  # one per slice count (thesis ch. 7)
-        self.image = ImageRenderer(ctx)
+        # one layer per grass type (thesis 6.4.5); the first is the patch being designed
+        self.layers: list[GrassLayer] = [GrassLayer(ctx, 0)]
         self.ground = GroundRenderer(ctx)
         self.props = PropRenderer(ctx)
         self.only = "geometry"  # one of MODES
-        self.lod = LodConfig()
         self.view = "shaded"  # shaded | techniques
         self.slice_params = SliceParams()
         # True: slices are converted here, at once, when a mode needs them (command line, tests).
         # The viewport sets False and converts step by step (widgets/slice_builder.py).
         self.auto_convert = True
         self._converter: PatchConverter | None = None
-        # slice textures by slice count, all made from one patch with one set of sizes
-        self._slices: dict[int, SliceTextures] = {}
-        self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
         self.lighting = Lighting()
         self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
         self._instances = np.zeros(0, INSTANCE_DTYPE)
@@ -70,25 +64,49 @@ class FramePipeline:
         self.last_visited = 0  # quadtree nodes the last traversal tested
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
-    # -- scene state -------------------------------------------------------------------------
+    # -- the first grass type, as the designer and the tests reach it -------------------------
+    @property
+    def geometry(self) -> GeometryRenderer:
+        return self.layers[0].geometry
+
+    @property
+    def image(self) -> ImageRenderer:
+        return self.layers[0].image
+
+    @property
+    def volumes(self) -> dict[int, VolumeRenderer]:
+        return self.layers[0].volumes
+
     @property
     def volume(self) -> VolumeRenderer:
         """The volume renderer of the designer's slice count (volume-only and compare modes)."""
-        return self._volume(self.slice_params.slices)
+        return self.layers[0].volume(self.slice_params.slices)
 
-    def _volume(self, slices: int) -> VolumeRenderer:
-        if slices not in self.volumes:
-            renderer = VolumeRenderer(self.ctx)
-            renderer.technique_color = volume_technique_color(slices)
-            renderer.density = self.geometry.density
-            renderer.set_instances(self._instances)
-            if slices in self._slices:
-                renderer.set_slices(self._slices[slices], owned=False)
-            self.volumes[slices] = renderer
-        return self.volumes[slices]
+    @property
+    def lod(self) -> LodConfig:
+        return self.layers[0].lod
 
+    @lod.setter
+    def lod(self, config: LodConfig) -> None:
+        self.layers[0].lod = config
+
+    # -- scene state -------------------------------------------------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
-        self.geometry.set_patch(patch)
+        self.layers[0].geometry.set_patch(patch)
+        self._convert()
+
+    def set_grass_types(self, types: list[tuple[GrassPatch, LodConfig, int]]) -> None:
+        """Further grass types beside the first: (patch, LOD levels, density-map channel)."""
+        for layer in self.layers[1:]:
+            layer.release()
+        self.layers = self.layers[:1]
+        for patch, lod, channel in types:
+            layer = GrassLayer(self.ctx, channel)
+            layer.lod = lod
+            layer.geometry.set_patch(patch)
+            layer.set_instances(self._instances)
+            layer.set_density(self.geometry.density)
+            self.layers.append(layer)
         self._convert()
 
     def set_only(self, only: str) -> None:
@@ -108,30 +126,21 @@ class FramePipeline:
         self.slice_params = params
         self._convert()
 
-    def required_slices(self) -> list[int]:
-        """Slice counts the current mode draws with."""
-        if self.only == "geometry" or self.geometry.patch is None:
-            return []
-        if self.only == "lod":
-            counts = {lv.slices for lv in self.lod.levels if lv.representation == "volume"}
-            if not counts and "image" in self.lod.representations():
-                counts = {self.slice_params.slices}  # the image-based needs a top slice
-            return sorted(counts)
-        return [self.slice_params.slices]
+    def missing(self) -> list[tuple[int, int]]:
+        """(layer, slice count) pairs the current mode needs and nobody converted yet."""
+        return [
+            (i, n)
+            for i, layer in enumerate(self.layers)
+            for n in layer.missing_slices(self.only, self.slice_params)
+        ]
 
     def missing_slices(self) -> list[int]:
-        """Slice counts needed now whose textures do not exist for this patch and these sizes."""
-        if self._slices_source != self._source():
-            return self.required_slices()
-        return [n for n in self.required_slices() if n not in self._slices]
+        """Slice counts the first grass type still needs."""
+        return self.layers[0].missing_slices(self.only, self.slice_params)
 
     @property
     def needs_slices(self) -> bool:
-        return bool(self.missing_slices())
-
-    def _source(self) -> tuple[GrassPatch | None, tuple[int, int, int]]:
-        sp = self.slice_params
-        return (self.geometry.patch, (sp.width, sp.height, sp.top))
+        return bool(self.missing())
 
     @property
     def converter(self) -> PatchConverter:
@@ -140,35 +149,17 @@ class FramePipeline:
         return self._converter
 
     def set_slice_textures(
-        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams
+        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams, layer: int = 0
     ) -> None:
         """Slices converted elsewhere (step by step) for `patch` with `params`."""
-        source = (patch, (params.width, params.height, params.top))
-        if (
-            self._slices_source is None
-            or self._slices_source[0] is not patch
-            or self._slices_source[1] != source[1]
-        ):
-            for textures_ in self._slices.values():
-                textures_.release()
-            self._slices = {}
-            self._slices_source = source
-        if params.slices in self._slices:
-            self._slices[params.slices].release()
-        self._slices[params.slices] = textures
-        for n, renderer in self.volumes.items():
-            renderer.set_slices(self._slices.get(n), owned=False)
-        self.image.textures = self._slices.get(self.slice_params.slices, textures)
+        self.layers[layer].set_slice_textures(textures, patch, params, self.slice_params.slices)
 
     def _convert(self) -> None:
-        """Slices of the current patch for the volume and image renderers (thesis 4.2)."""
+        """Slices of every grass type's patch for the volume and image renderers (4.2)."""
         if not self.auto_convert:
             return
-        for n in self.missing_slices():
-            patch, sp = self.geometry.patch, self.slice_params.replace(slices=n)
-            assert patch is not None
-            sliced = self.converter.convert(patch, n, (sp.width, sp.height), sp.top)
-            self.set_slice_textures(SliceTextures.upload(self.ctx, sliced), patch, sp)
+        for layer in self.layers:
+            layer.convert(self.converter, self.only, self.slice_params)
 
     def set_props(self, props: np.ndarray) -> None:
         """Boxes standing in the grass (core/props.py), drawn with the ground."""
@@ -191,8 +182,8 @@ class FramePipeline:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.terrain = None
         self._instances = instances
-        for renderer in (self.geometry, self.image, *self.volumes.values()):
-            renderer.set_instances(instances)
+        for layer in self.layers:
+            layer.set_instances(instances)
         if instances.size:
             lo = instances["origin"]
             hi = lo + instances["size"]
@@ -204,8 +195,8 @@ class FramePipeline:
             )
 
     def set_density(self, density: float) -> None:
-        for renderer in (self.geometry, self.image, *self.volumes.values()):
-            renderer.density = float(density)
+        for layer in self.layers:
+            layer.set_density(density)
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
@@ -297,69 +288,39 @@ class FramePipeline:
         self.design.use()
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
-        tq = time.perf_counter()
-        batches = self._batches(mode, camera, w / max(h, 1))
-        stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
-        patch = self.geometry.patch
-        for (representation, _), (_renderer, count) in batches.items():
-            counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
-            setattr(stats, counter, getattr(stats, counter) + count)
-            if representation == "geometry" and patch is not None:
-                visible = int(np.count_nonzero(patch.thresholds <= self.geometry.density))
-                stats.blades += visible * count
-                stats.triangles = stats.blades * patch.params.subdivisions * 2
+        frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
+        drawn = []
+        for layer in self.layers:
+            tq = time.perf_counter()
+            batches, visited = layer.batches(
+                mode, camera, w / max(h, 1), self.terrain, frustum, self.slice_params.slices
+            )
+            stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
+            self.last_visited = visited
+            drawn.append(batches)
+            patch = layer.patch
+            for (representation, _), (_renderer, count) in batches.items():
+                counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
+                setattr(stats, counter, getattr(stats, counter) + count)
+                if representation == "geometry" and patch is not None:
+                    visible = int(np.count_nonzero(patch.thresholds <= layer.geometry.density))
+                    stats.blades += visible * count
+                    stats.triangles += visible * count * patch.params.subdivisions * 2
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
         order = {"geometry": 0, "image": 1, "volume": 2}
+        passes = [(key, item) for batches in drawn for key, item in batches.items()]
         for (representation, _), (renderer, count) in sorted(
-            batches.items(), key=lambda item: (order[item[0][0]], -item[0][1])
+            passes, key=lambda p: (order[p[0][0]], -p[0][1])
         ):
             if count:
                 key = {"geometry": "t_g_ms", "volume": "t_v_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
 
-    def _batches(
-        self, mode: str, camera: Camera, aspect: float
-    ) -> dict[tuple[str, int], tuple[object, int]]:
-        """(representation, slices) → (renderer, instance count) for one view. In LOD mode the
-        cells of every level are selected by distance and levels that share a renderer are drawn
-        in one call; otherwise one representation draws every cell (no macro-cells)."""
-        if mode == "lod":
-            config = self.lod
-        else:
-            slices = self.slice_params.slices
-            config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
-        if self.terrain is not None:
-            frustum = Frustum.from_camera(camera, aspect) if self.culling else None
-            drawn = traverse(self.terrain, camera.eye, config, frustum)
-            parts = drawn.levels
-            self.last_visited = drawn.visited
-        elif mode == "lod":
-            parts = lod_select(self._instances, camera.eye, config)
-        else:
-            parts = [self._instances]
-        grouped: dict[tuple[str, int], list[np.ndarray]] = {}
-        for level, part in zip(config.levels, parts, strict=True):
-            grouped.setdefault(level.key, []).append(part)
-        batches = {}
-        for key, chunks in grouped.items():
-            cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
-            representation, slices = key
-            renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
-            if renderer is None:
-                renderer = self._volume(slices)
-            renderer.set_instances(cells)
-            batches[key] = (renderer, int(cells.size))
-        return batches
-
     def release(self) -> None:
-        self.geometry.release()
-        for renderer in self.volumes.values():
-            renderer.release()
-        for textures in self._slices.values():
-            textures.release()
-        self.image.release()
+        for layer in self.layers:
+            layer.release()
         self.ground.release()
         self.props.release()
         self.design.release()
@@ -375,16 +336,6 @@ def _passes(renderer, frame: FrameUniforms) -> None:
     renderer.prepare(frame)
     renderer.draw()
     renderer.finalize()
-
-
-def volume_technique_color(slices: int) -> tuple[float, float, float]:
-    """Volume levels are yellow in the technique view (thesis Figs. 7.1-7.6); levels with fewer
-    slices in lighter or deeper yellows, so the thesis's three volume levels can be told apart."""
-    if slices >= 8:
-        return (1.0, 0.85, 0.1)
-    if slices >= 2:
-        return (0.95, 0.62, 0.05)
-    return (1.0, 0.97, 0.38)
 
 
 def _opaque_alpha(fbo: moderngl.Framebuffer) -> None:

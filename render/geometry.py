@@ -29,6 +29,7 @@ VERTEX_ATTRIBUTES = (
 class GeometryRenderer(InstancedRenderer):
     technique_color = (1.0, 0.15, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     alpha_ref = 0.25
+    density_channel = 0  # the grass type's channel of the density map (render/layer.py)
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
 
     def __init__(self, ctx: moderngl.Context, program: str = "geometry.glsl") -> None:
@@ -74,6 +75,8 @@ class GeometryRenderer(InstancedRenderer):
     # -- the three passes --------------------------------------------------------------------
     def prepare(self, frame: FrameUniforms) -> None:
         frame.apply(self.program, self.technique_color)
+        if "u_density_channel" in self.program:
+            self.program["u_density_channel"].value = self.density_channel
         self.program["u_density"].value = float(self.density)
         self.program["u_cell_size"].value = 1.0
         self.program["u_alpha_ref"].value = self.alpha_ref

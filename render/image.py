@@ -18,6 +18,7 @@ GRID = 6  # quads per side of one (macro-)cell's slice
 
 class ImageRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
+    density_channel = 0  # the grass type's channel of the density map (render/layer.py)
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
     alpha_ref = 0.2
@@ -49,6 +50,7 @@ class ImageRenderer(InstancedRenderer):
             return
         p = self.program
         frame.apply(p, self.technique_color)
+        p["u_density_channel"].value = self.density_channel
         p["u_lift"].value = self.lift
         p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_grazing_lean"].value = self.grazing_lean

@@ -32,6 +32,7 @@ TOP_HEIGHT = 0.7
 
 class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
+    density_channel = 0  # the grass type's channel of the density map (render/layer.py)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 12
     skip_steps = 8  # height-map steps over empty space in extruded cuboids (volume.glsl)
@@ -77,6 +78,7 @@ class VolumeRenderer(InstancedRenderer):
             return
         p = self.program
         frame.apply(p, self.technique_color)
+        p["u_density_channel"].value = self.density_channel
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon

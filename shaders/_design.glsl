@@ -3,7 +3,8 @@
 uniform sampler2DArray u_design;
 
 vec2 design_uv(vec4 config, vec2 local) { return config.xy + local * config.zw; }
-float design_density(vec2 uv) { return texture(u_design, vec3(uv, 0.0)).r; }
+uniform int u_density_channel;  // the grass type's channel of the density map (6.4.5)
+float design_density(vec2 uv) { return texture(u_design, vec3(uv, 0.0))[u_density_channel]; }
 vec4 design_color(vec2 uv) { return texture(u_design, vec3(uv, 1.0)); }
 vec3 design_ambient(vec2 uv) { return texture(u_design, vec3(uv, 2.0)).rgb; }
 vec3 design_diffuse(vec2 uv) { return texture(u_design, vec3(uv, 3.0)).rgb; }

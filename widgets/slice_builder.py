@@ -39,7 +39,7 @@ class SliceBuilder(QObject):
         self._delivery.ready.connect(self._on_levels, Qt.ConnectionType.QueuedConnection)
         self._generation = 0
         self._steps = None
-        self._target = None  # (patch, SliceParams) being converted
+        self._target = None  # (patch, SliceParams, layer) being converted
         self._pending = False  # levels on the worker
 
     @property
@@ -52,12 +52,13 @@ class SliceBuilder(QObject):
         if pipeline is None or not pipeline.needs_slices:
             self._cancel()
             return
-        patch = pipeline.geometry.patch
-        params = pipeline.slice_params.replace(slices=pipeline.missing_slices()[0])
-        if self.busy and self._target[0] is patch and self._target[1] == params:
+        layer, slices = pipeline.missing()[0]
+        patch = pipeline.layers[layer].patch
+        params = pipeline.slice_params.replace(slices=slices)
+        if self.busy and self._target[0] is patch and self._target[1:] == (params, layer):
             return  # already on it
         self._generation += 1
-        self._target = (patch, params)
+        self._target = (patch, params, layer)
         self._pending = False
         self.viewport.makeCurrent()  # the converter's GL objects are made on first use
         try:

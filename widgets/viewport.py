@@ -62,6 +62,7 @@ class GrassViewport(QOpenGLWidget):
         self._maps: DesignMaps | None = None
         self._props: np.ndarray | None = None
         self._fog: float | None = None
+        self._grass_types: list = []
         self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
@@ -111,6 +112,12 @@ class GrassViewport(QOpenGLWidget):
     def set_props(self, props: np.ndarray) -> None:
         self._props = props
         self._upload(lambda pipeline: pipeline.set_props(props))
+
+    def set_grass_types(self, types: list) -> None:
+        """Further grass types: (patch, LOD levels, density channel) each."""
+        self._grass_types = types
+        self._upload(lambda pipeline: pipeline.set_grass_types(types))
+        self.slices.schedule()
 
     def set_fog(self, distance: float) -> None:
         self._fog = distance
@@ -171,6 +178,8 @@ class GrassViewport(QOpenGLWidget):
             pipeline.lighting = dataclasses.replace(pipeline.lighting, fog_distance=self._fog)
         if self._patch is not None:
             pipeline.set_patch(self._patch)
+        if self._grass_types:
+            pipeline.set_grass_types(self._grass_types)
         if self._instances is not None:
             pipeline.set_instances(self._instances)
         if self._terrain is not None:

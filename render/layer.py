@@ -1,0 +1,172 @@
+"""One grass type on the terrain (thesis 6.4.5): its patch, its slices, its LOD levels and the
+renderers that draw it. The frame pipeline draws one layer per grass type over the shared
+terrain, ground and design maps; each layer reads its own channel of the density map."""
+
+from __future__ import annotations
+
+import moderngl
+import numpy as np
+
+from core.camera import Camera
+from core.frustum import Frustum
+from core.grid import INSTANCE_DTYPE
+from core.lod import LodConfig, LodLevel
+from core.lod import select as lod_select
+from core.params import SliceParams
+from core.patch import GrassPatch
+from core.terrain import Terrain
+from core.traversal import traverse
+from render.conversion import PatchConverter
+from render.geometry import GeometryRenderer
+from render.image import ImageRenderer
+from render.slices import SliceTextures
+from render.volume import VolumeRenderer
+
+
+def volume_technique_color(slices: int) -> tuple[float, float, float]:
+    """Volume levels are yellow in the technique view (thesis Figs. 7.1-7.6); levels with fewer
+    slices in lighter or deeper yellows, so the thesis's three volume levels can be told apart."""
+    if slices >= 8:
+        return (1.0, 0.85, 0.1)
+    if slices >= 2:
+        return (0.95, 0.62, 0.05)
+    return (1.0, 0.97, 0.38)
+
+
+class GrassLayer:
+    def __init__(self, ctx: moderngl.Context, density_channel: int = 0) -> None:
+        self.ctx = ctx
+        self.density_channel = density_channel
+        self.geometry = GeometryRenderer(ctx)
+        self.volumes: dict[int, VolumeRenderer] = {}  # one per slice count (thesis ch. 7)
+        self.image = ImageRenderer(ctx)
+        self.lod = LodConfig()
+        self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
+        self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
+        self._instances = np.zeros(0, INSTANCE_DTYPE)
+        self._set_channel(self.geometry)
+        self._set_channel(self.image)
+
+    def _set_channel(self, renderer) -> None:
+        renderer.density_channel = self.density_channel
+
+    @property
+    def patch(self) -> GrassPatch | None:
+        return self.geometry.patch
+
+    @property
+    def renderers(self) -> list:
+        return [self.geometry, self.image, *self.volumes.values()]
+
+    def volume(self, slices: int) -> VolumeRenderer:
+        if slices not in self.volumes:
+            renderer = VolumeRenderer(self.ctx)
+            renderer.technique_color = volume_technique_color(slices)
+            renderer.density = self.geometry.density
+            self._set_channel(renderer)
+            renderer.set_instances(self._instances)
+            if slices in self._slices:
+                renderer.set_slices(self._slices[slices], owned=False)
+            self.volumes[slices] = renderer
+        return self.volumes[slices]
+
+    def set_instances(self, instances: np.ndarray) -> None:
+        self._instances = instances
+        for renderer in self.renderers:
+            renderer.set_instances(instances)
+
+    def set_density(self, density: float) -> None:
+        for renderer in self.renderers:
+            renderer.density = float(density)
+
+    # -- slices ------------------------------------------------------------------------------
+    def required_slices(self, mode: str, sp: SliceParams) -> list[int]:
+        """Slice counts the mode draws this layer with."""
+        if mode == "geometry" or self.patch is None:
+            return []
+        if mode == "lod":
+            counts = {lv.slices for lv in self.lod.levels if lv.representation == "volume"}
+            if not counts and "image" in self.lod.representations():
+                counts = {sp.slices}  # the image-based needs a top slice
+            return sorted(counts)
+        return [sp.slices]
+
+    def missing_slices(self, mode: str, sp: SliceParams) -> list[int]:
+        """Slice counts needed now whose textures do not exist for this patch and these sizes."""
+        if self._slices_source != (self.patch, (sp.width, sp.height, sp.top)):
+            return self.required_slices(mode, sp)
+        return [n for n in self.required_slices(mode, sp) if n not in self._slices]
+
+    def set_slice_textures(
+        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams, image_slices: int
+    ) -> None:
+        """Slices converted for `patch` with `params`; the image-based renderer takes the top
+        slice of the `image_slices` conversion when there is one."""
+        source = (patch, (params.width, params.height, params.top))
+        old = self._slices_source
+        if old is None or old[0] is not patch or old[1] != source[1]:
+            for stale in self._slices.values():
+                stale.release()
+            self._slices = {}
+            self._slices_source = source
+        if params.slices in self._slices:
+            self._slices[params.slices].release()
+        self._slices[params.slices] = textures
+        for n, renderer in self.volumes.items():
+            renderer.set_slices(self._slices.get(n), owned=False)
+        self.image.textures = self._slices.get(image_slices, textures)
+
+    def convert(self, converter: PatchConverter, mode: str, sp: SliceParams) -> None:
+        for n in self.missing_slices(mode, sp):
+            patch = self.patch
+            assert patch is not None
+            sliced = converter.convert(patch, n, (sp.width, sp.height), sp.top)
+            textures = SliceTextures.upload(self.ctx, sliced)
+            self.set_slice_textures(textures, patch, sp.replace(slices=n), sp.slices)
+
+    # -- drawing -----------------------------------------------------------------------------
+    def batches(
+        self,
+        mode: str,
+        camera: Camera,
+        aspect: float,
+        terrain: Terrain | None,
+        frustum: Frustum | None,
+        slices: int,
+    ) -> tuple[dict[tuple[str, int], tuple[object, int]], int]:
+        """(representation, slices) → (renderer, instance count) for one view, and the quadtree
+        nodes visited. In LOD mode the cells of every level are selected by distance and levels
+        that share a renderer are drawn in one call; otherwise one representation draws every
+        cell (no macro-cells)."""
+        if mode == "lod":
+            config = self.lod
+        else:
+            config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
+        visited = 0
+        if terrain is not None:
+            drawn = traverse(terrain, camera.eye, config, frustum)
+            parts, visited = drawn.levels, drawn.visited
+        elif mode == "lod":
+            parts = lod_select(self._instances, camera.eye, config)
+        else:
+            parts = [self._instances]
+        grouped: dict[tuple[str, int], list[np.ndarray]] = {}
+        for level, part in zip(config.levels, parts, strict=True):
+            grouped.setdefault(level.key, []).append(part)
+        batches = {}
+        for key, chunks in grouped.items():
+            cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
+            representation, n = key
+            renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
+            if renderer is None:
+                renderer = self.volume(n)
+            renderer.set_instances(cells)
+            batches[key] = (renderer, int(cells.size))
+        return batches, visited
+
+    def release(self) -> None:
+        for renderer in self.renderers:
+            renderer.release()
+        for textures in self._slices.values():
+            textures.release()
+        self._slices = {}

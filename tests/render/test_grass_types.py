@@ -1,0 +1,48 @@
+"""Several grass types on one terrain (thesis 6.4.5): each with its own patch and LOD levels,
+placed by its own channel of the density map, sharing terrain and light maps."""
+
+import dataclasses
+
+import numpy as np
+
+from app.scenes import GrassType, get_scene
+from core.lod import LodConfig
+from core.params import PRESETS
+
+BASE = get_scene("patch-grid")
+SIZE = (200, 150)
+
+
+def left_half(width, height):
+    out = np.zeros((height, width), np.float32)
+    out[:, : width // 2] = 1.0  # u < 0.5: the cells at x < 0
+    return out
+
+
+TALL = GrassType(
+    "tall",
+    PRESETS["long thin meadow grass"].replace(blade_count=600, tip_color=(0.9, 0.8, 0.3)),
+    LodConfig.zones(geometry_end=None, volume_end=None),  # geometry everywhere
+    channel=1,
+    density_map=left_half,
+)
+
+
+def test_a_second_grass_type_grows_only_where_its_density_channel_says(headless, ctx):
+    camera = BASE.camera("top")
+    one = dataclasses.replace(BASE, params=BASE.params.replace(blade_count=500), mirror_seed=None)
+    two = dataclasses.replace(one, grass=(TALL,))
+    headless.pipeline.set_only("lod")
+    headless.load(one)
+    a, sa = headless.render(camera, SIZE)
+    headless.load(two)
+    b, sb = headless.render(camera, SIZE)
+    headless.load(BASE)
+    headless.pipeline.set_only("geometry")
+    changed = np.abs(a.astype(int) - b.astype(int)).max(axis=-1) > 20
+    # the top camera looks down -y with +x to the right of the image
+    left, right = changed[:, 20:90], changed[:, 110:180]
+    assert left.mean() > 0.2  # the tall grass stands among the first where its channel is 1
+    assert right.mean() < 0.02  # and nowhere else
+    assert sb.c_g > sa.c_g  # its cells are drawn too
+    assert sb.blades > sa.blades
