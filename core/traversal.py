@@ -42,82 +42,155 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
     begin = np.array([lv.begin for lv in levels])
     end = np.array([np.inf if lv.end is None else lv.end for lv in levels])
     macro = np.array([lv.macro for lv in levels])
-    max_unplanarity = [
-        np.inf if lv.max_unplanarity is None else lv.max_unplanarity for lv in levels
-    ]
+    max_unplanarity = np.array(
+        [np.inf if lv.max_unplanarity is None else lv.max_unplanarity for lv in levels]
+    )
+    # each level's own zone, where no neighbour draws (macro-cells drawn by one level only)
+    prev_end = np.concatenate([[-np.inf], end[:-1]])
+    next_begin = np.concatenate([begin[1:], [np.inf]])
+    core_lo = np.maximum(begin, prev_end) + MARGIN
+    core_hi = np.minimum(end, next_begin) - MARGIN
+    # nodes shared by levels t and t+1: no cell may reach back into t-1 nor on into t+2
+    pair_lo = np.concatenate([[-np.inf], end[:-2] + MARGIN]) if n_levels > 1 else np.zeros(0)
+    pair_hi = np.concatenate([begin[2:] - MARGIN, [np.inf]]) if n_levels > 1 else np.zeros(0)
+    pair_limit = np.minimum(macro[:-1], macro[1:])
     ox, oz = terrain.origin
 
-    out: list[list[np.ndarray]] = [[] for _ in range(n_levels)]
+    records: list[tuple] = []  # (x0, z0, sx, sz, y_lo, y_hi, level, w, side) arrays
     ix = np.zeros(1, np.int64)
     iz = np.zeros(1, np.int64)
-    flags = np.full(1, (1 << n_levels) - 1, np.int64)
+    active = np.ones((1, n_levels), bool)  # per node and LOD level: still to be decided
     visited = 0
     for level in range(tree.depth - 1, -1, -1):
         visited += ix.size
         x0, z0, x1, z1 = tree.extent(level, ix, iz)
+        y_lo = tree.y_min[level][ix, iz].astype(np.float32)
+        y_hi = tree.y_max[level][ix, iz].astype(np.float32)
         if frustum is not None:
-            lo = np.stack([ox + x0, tree.y_min[level][ix, iz], oz + z0], axis=1)
-            hi = np.stack(
-                [ox + x1, tree.y_max[level][ix, iz] + terrain.grass_height, oz + z1], axis=1
-            )
-            centre = (lo + hi) / 2.0
-            radius = np.linalg.norm(hi - lo, axis=1) / 2.0
-            flags[~frustum.visible(centre, radius)] = 0
+            lo = np.stack([ox + x0, y_lo, oz + z0], axis=1)
+            hi = np.stack([ox + x1, y_hi + terrain.grass_height, oz + z1], axis=1)
+            visible = frustum.visible((lo + hi) / 2.0, np.linalg.norm(hi - lo, axis=1) / 2.0)
+            active &= visible[:, None]
         if level == 0:
-            cells = terrain.cells(ix, iz)
-            centre = cells["origin"] + 0.5 * cells["size"]
-            d = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
-            for t, (inside, lod) in enumerate(classify(d, config)):
-                draw = inside & ((flags >> t) & 1 == 1)
-                part = cells[draw]
-                part["lod"] = lod[draw]
-                out[t].append(part)
+            records.append(_leaves(terrain, eye, config, ix, iz, active))
             break
         # horizontal distances from the eye to the nearest and farthest cell centre in the node
         cx0, cx1 = ox + x0 + 0.5, ox + x1 - 0.5
         cz0, cz1 = oz + z0 + 0.5, oz + z1 - 0.5
         dx = np.maximum(np.maximum(cx0 - eye[0], eye[0] - cx1), 0.0)
         dz = np.maximum(np.maximum(cz0 - eye[2], eye[2] - cz1), 0.0)
-        dmin = np.hypot(dx, dz)
+        dmin = np.hypot(dx, dz)[:, None]
         dmax = np.hypot(
             np.maximum(np.abs(eye[0] - cx0), np.abs(eye[0] - cx1)),
             np.maximum(np.abs(eye[2] - cz0), np.abs(eye[2] - cz1)),
-        )
+        )[:, None]
         span = 1 << level  # node edge in cells
-        y_lo = tree.y_min[level][ix, iz].astype(np.float32)
-        y_hi = tree.y_max[level][ix, iz].astype(np.float32)
+        # the distance test: levels whose range the node misses drop it (and its children)
+        active &= (dmax >= begin - MARGIN) & (dmin < end + MARGIN)
         # the unplanarity LOD test (6.4.4): macro-cells only on nearly flat ground
-        flat = [(y_hi - y_lo) <= limit for limit in max_unplanarity]
-        for t in range(n_levels):
-            bit = 1 << t
-            active = (flags & bit) != 0
-            gone = active & ((dmax < begin[t] - MARGIN) | (dmin >= end[t] + MARGIN))
-            flags[gone] &= ~bit
-            whole = _macro(t, span, active & ~gone, dmin, dmax, begin, end, macro)
-            whole &= flat[t]
-            if whole.any():
-                cells = terrain.cells(
-                    x0[whole],
-                    z0[whole],
-                    x1[whole] - x0[whole],
-                    z1[whole] - z0[whole],
-                    (y_lo[whole], y_hi[whole]),
-                )
-                centre = cells["origin"] + 0.5 * cells["size"]
-                d = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
-                cells["lod"] = (ALL_IN, 0.0)
-                out[t].append(cells)
-                flags[whole] &= ~bit
-        if span > 1:
-            box = (x0, z0, x1, z1, y_lo, y_hi)
-            _pairs(terrain, eye, span, flags, box, flat, dmin, dmax, begin, end, macro, out)
-        keep = flags != 0
+        flat = (y_hi - y_lo)[:, None] <= max_unplanarity
+        box = (x0, z0, x1 - x0, z1 - z0, y_lo, y_hi)
+        # the macro-cell test (6.2): small enough and wholly in the level's own zone
+        whole = active & flat & (span <= macro) & (dmin >= core_lo) & (dmax < core_hi)
+        node, t = np.nonzero(whole)
+        if node.size:
+            lod_w = np.full(node.size, ALL_IN, np.float32)
+            records.append((*(a[node] for a in box), t, lod_w, np.zeros(node.size, np.float32)))
+            active[node, t] = False
+        if n_levels > 1:
+            pair = (
+                active[:, :-1]
+                & active[:, 1:]
+                & flat[:, :-1]
+                & flat[:, 1:]
+                & (span <= pair_limit)
+                & (dmin >= pair_lo)
+                & (dmax < pair_hi)
+            )
+            node, t = np.nonzero(pair)
+            if node.size:
+                records.extend(_pair_records(eye, ox, oz, box, node, t, begin, end))
+                active[node, t] = False
+                active[node, t + 1] = False
+        keep = active.any(axis=1)
         ix, iz, parent = tree.children(level, ix[keep], iz[keep])
-        flags = flags[keep][parent]
-    levels_out = [np.concatenate(parts) if parts else np.zeros(0, INSTANCE_DTYPE) for parts in out]
+        active = active[keep][parent]
+    levels_out = _instances(terrain, records, n_levels)
     if config.silhouettes:
         _silhouettes(levels_out, config, eye, terrain.grass_height)
     return DrawList(levels_out, visited)
+
+
+def _leaves(terrain, eye, config, ix, iz, active) -> tuple:
+    """Records for single cells: classified by their centre's distance exactly as
+    core/lod.select does, for every level still active."""
+    ox, oz = terrain.origin
+    centre_x = (np.float32(ox) + ix.astype(np.float32)) + np.float32(0.5)
+    centre_z = (np.float32(oz) + iz.astype(np.float32)) + np.float32(0.5)
+    d = np.hypot(centre_x - eye[0], centre_z - eye[2])
+    nodes, ts, ws, sides = [], [], [], []
+    for t, (inside, lod) in enumerate(classify(d, config)):
+        node = np.nonzero(inside & active[:, t])[0]
+        nodes.append(node)
+        ts.append(np.full(node.size, t))
+        ws.append(lod[node, 0])
+        sides.append(lod[node, 1])
+    node = np.concatenate(nodes)
+    one = np.ones(node.size, np.int64)
+    return (
+        ix[node],
+        iz[node],
+        one,
+        one,
+        terrain.cell_min[ix[node], iz[node]],
+        terrain.cell_max[ix[node], iz[node]],
+        np.concatenate(ts),
+        np.concatenate(ws),
+        np.concatenate(sides),
+    )
+
+
+def _pair_records(eye, ox, oz, box, node, t, begin, end) -> list[tuple]:
+    """Nodes that reach into two neighbouring levels t, t+1 and no third, and fit both levels'
+    macro-cell limits: both levels draw the very same node with one w, taken at its centre (the
+    near one keeps threshold < w, the far one the rest), so every blade is drawn once. Within
+    such a node the boundary between the levels blurs to the node's size, as macro-cells do in
+    the thesis (Fig. 6.5); the cells of the node no longer follow their own distances."""
+    x0, z0, sx, sz, y_lo, y_hi = (a[node] for a in box)
+    cx = (np.float32(ox) + x0.astype(np.float32)) + np.float32(0.5) * sx.astype(np.float32)
+    cz = (np.float32(oz) + z0.astype(np.float32)) + np.float32(0.5) * sz.astype(np.float32)
+    d = np.hypot(cx - eye[0], cz - eye[2])
+    w = weight_near(d, begin[t + 1], end[t]).astype(np.float32)
+    near, far = w > 0.0, w < 1.0
+    out = []
+    for keep, level, side in ((near, t, 0.0), (far, t + 1, 1.0)):
+        out.append(
+            (
+                x0[keep],
+                z0[keep],
+                sx[keep],
+                sz[keep],
+                y_lo[keep],
+                y_hi[keep],
+                level[keep],
+                w[keep],
+                np.full(int(keep.sum()), side, np.float32),
+            )
+        )
+    return out
+
+
+def _instances(terrain: Terrain, records: list[tuple], n_levels: int) -> list[np.ndarray]:
+    """All records turned into instances at once, then split by LOD level."""
+    if not records:
+        return [np.zeros(0, INSTANCE_DTYPE) for _ in range(n_levels)]
+    x0, z0, sx, sz, y_lo, y_hi, t, w, side = (np.concatenate(a) for a in zip(*records, strict=True))
+    cells = terrain.cells(x0, z0, sx, sz, (y_lo, y_hi))
+    cells["lod"][:, 0] = w
+    cells["lod"][:, 1] = side
+    order = np.argsort(t, kind="stable")
+    bounds = np.searchsorted(t[order], np.arange(n_levels + 1))
+    return [cells[order[bounds[k] : bounds[k + 1]]] for k in range(n_levels)]
 
 
 def _silhouettes(out: list[np.ndarray], config: LodConfig, eye, grass_height: float) -> None:
@@ -135,49 +208,3 @@ def _silhouettes(out: list[np.ndarray], config: LodConfig, eye, grass_height: fl
     extra["lod"] = (ALL_IN, 0.0)
     if extra.size:
         out[volume] = np.concatenate([out[volume], extra])
-
-
-def _macro(t, span, active, dmin, dmax, begin, end, macro) -> np.ndarray:
-    """Nodes that lie wholly in level t's own zone (no other level draws there) and are no
-    larger than its macro-cell limit (thesis 6.2): drawn whole, every blade."""
-    n = len(begin)
-    prev_end = end[t - 1] if t > 0 else -np.inf
-    next_begin = begin[t + 1] if t + 1 < n else np.inf
-    core = (
-        active
-        & (dmin >= max(begin[t], prev_end) + MARGIN)
-        & (dmax < min(end[t], next_begin) - MARGIN)
-    )
-    return core & (span <= macro[t])
-
-
-def _pairs(terrain, eye, span, flags, box, flat, dmin, dmax, begin, end, macro, out) -> None:
-    """Nodes that reach into two neighbouring levels t, t+1 and no third, and fit both levels'
-    macro-cell limits: both levels draw the very same node with one w, taken at its centre (the
-    near one keeps threshold < w, the far one the rest), so every blade is drawn once. Within
-    such a node the boundary between the levels blurs to the node's size, as macro-cells do in
-    the thesis (Fig. 6.5); the cells of the node no longer follow their own distances."""
-    x0, z0, x1, z1, y_lo, y_hi = box
-    n = len(begin)
-    for t in range(n - 1):
-        if span > min(macro[t], macro[t + 1]):
-            continue
-        a, b = 1 << t, 1 << (t + 1)
-        lo = end[t - 1] + MARGIN if t > 0 else -np.inf  # no cell reaches back into level t-1
-        hi = begin[t + 2] - MARGIN if t + 2 < n else np.inf  # nor on into level t+2
-        pair = ((flags & a) != 0) & ((flags & b) != 0) & (dmin >= lo) & (dmax < hi)
-        pair &= flat[t] & flat[t + 1]
-        if not pair.any():
-            continue
-        cells = terrain.cells(
-            x0[pair], z0[pair], x1[pair] - x0[pair], z1[pair] - z0[pair], (y_lo[pair], y_hi[pair])
-        )
-        centre = cells["origin"] + 0.5 * cells["size"]
-        d = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
-        w = weight_near(d, begin[t + 1], end[t]).astype(np.float32)
-        near, far = cells.copy(), cells
-        near["lod"][:, 0], near["lod"][:, 1] = w, 0.0
-        far["lod"][:, 0], far["lod"][:, 1] = w, 1.0
-        out[t].append(near[w > 0.0])
-        out[t + 1].append(far[w < 1.0])
-        flags[pair] &= ~(a | b)
