@@ -49,6 +49,18 @@ def coverage(image: np.ndarray) -> float:
     return float(grass_mask(image).mean())
 
 
+def pixel_rays(camera, size: tuple[int, int]) -> np.ndarray:
+    """Direction (unnormalised) from the eye through every pixel's centre, rows top first like
+    a rendered image: (h, w, 3)."""
+    w, h = size
+    inv = np.linalg.inv(camera.projection(w / h) @ camera.view())
+    xs = (np.arange(w) + 0.5) / w * 2 - 1
+    ys = 1 - (np.arange(h) + 0.5) / h * 2
+    gx, gy = np.meshgrid(xs, ys)
+    far = np.stack([gx, gy, np.ones_like(gx), np.ones_like(gx)], -1) @ inv.T
+    return far[..., :3] / far[..., 3:] - camera.eye
+
+
 def covered(image: np.ndarray, bare: np.ndarray, tolerance: int = 10) -> float:
     """Fraction of pixels that differ from `bare` (the same view without grass)."""
     diff = np.abs(image.astype(np.int16) - bare.astype(np.int16)).max(axis=-1)

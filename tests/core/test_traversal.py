@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from app.scenes import get_scene
 from core.camera import Camera
 from core.frustum import Frustum
 from core.lod import LodConfig, LodLevel, select
@@ -15,15 +16,7 @@ from core.quadtree import QuadTree, depth_bound, node_bound
 from core.terrain import Terrain
 from core.traversal import traverse
 
-FOOTBALL = LodConfig(
-    (
-        LodLevel("geometry", 0, 20),
-        LodLevel("volume", 5, 80, slices=8, macro=32),
-        LodLevel("volume", 50, 160, slices=2, macro=32),
-        LodLevel("volume", 100, 300, slices=1, macro=32),
-        LodLevel("image", 200, None, macro=512),
-    )
-)
+FOOTBALL = get_scene("football").lod  # the thesis's five levels (ch. 7)
 
 
 def expand(instances: np.ndarray) -> dict[tuple[int, int], tuple[float, float]]:

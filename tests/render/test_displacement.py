@@ -9,6 +9,7 @@ import pytest
 
 from app.scenes import get_scene
 from core.camera import Camera
+from tests.conftest import pixel_rays
 
 BASE = get_scene("patch-grid")
 SCALE = 4.0
@@ -93,15 +94,10 @@ def test_volume_lookup_matches_the_blades_heights(headless, ctx, restore):
 
 
 def ramp_pixels(camera):
-    """Pixels whose ray meets the ramp's surface inside (True) and outside (False) its cells,
-    with a margin of half a cell either way left out (None as -1)."""
-    w, h = SIZE
-    inv = np.linalg.inv(camera.projection(w / h) @ camera.view())
-    xs = (np.arange(w) + 0.5) / w * 2 - 1
-    ys = 1 - (np.arange(h) + 0.5) / h * 2
-    gx, gy = np.meshgrid(xs, ys)
-    far = np.stack([gx, gy, np.ones_like(gx), np.ones_like(gx)], -1) @ inv.T
-    d = far[..., :3] / far[..., 3:] - camera.eye
+    """Pixels whose ray meets the ramp's surface inside its cells, and pixels whose ray meets
+    the plain ground well away from the ramp,
+    with a margin of half a cell either way left out."""
+    d = pixel_rays(camera, SIZE)
     e = camera.eye
     # y = 0.5 z + 2 over the cells: e.y + t d.y = 0.5 (e.z + t d.z) + 2
     t = (0.5 * e[2] + 2 - e[1]) / (d[..., 1] - 0.5 * d[..., 2])

@@ -8,7 +8,7 @@ import pytest
 
 from app.scenes import get_scene
 from core.lod import LodConfig
-from tests.conftest import grass_mask
+from tests.conftest import grass_mask, pixel_rays
 
 SIZE = (320, 240)
 SCENE = get_scene("patch-grid")
@@ -18,15 +18,8 @@ PARAMS = SCENE.params.replace(blade_count=1200)
 def ground_distance(camera, size):
     """Horizontal distance from the eye to where each pixel's ray meets the ground (nan above
     the horizon); rows top first like the rendered image."""
-    w, h = size
-    inv = np.linalg.inv(camera.projection(w / h) @ camera.view())
-    xs = (np.arange(w) + 0.5) / w * 2 - 1
-    ys = 1 - (np.arange(h) + 0.5) / h * 2
-    gx, gy = np.meshgrid(xs, ys)
-    far = np.stack([gx, gy, np.ones_like(gx), np.ones_like(gx)], -1) @ inv.T
-    far = far[..., :3] / far[..., 3:]
     eye = camera.eye
-    d = far - eye
+    d = pixel_rays(camera, size)
     t = -eye[1] / d[..., 1]
     hit = eye + t[..., None] * d
     dist = np.hypot(hit[..., 0] - eye[0], hit[..., 2] - eye[2])
