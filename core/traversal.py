@@ -1,12 +1,11 @@
 """One traversal of the quadtree per frame for all LOD levels (thesis 6.1.2-6.1.4, 6.2).
 
 Breadth-first and vectorised: each tree level is one set of numpy operations over the nodes
-still in play, never a Python loop over nodes or cells. Per node and LOD level the distance
-test decides draw / discard / split; a skip flag per LOD level is cleared when a level discards
-a node and children inherit the flags (Fig. 6.3); the macro-cell test draws a whole node as one
-instance when it is small enough and lies wholly inside the level's range (see _macro for transition zones);
-sphere + cone culling drops nodes outside the view. Leaves are classified exactly as
-core/lod.select classifies cells, so without culling both give the same cells per level.
+still in play, never a Python loop over nodes or cells. A (nodes × LOD levels) mask holds which
+levels still have to decide a node; the LOD tests of core/lod_tests.py clear entries (discard),
+draw a node whole as a macro-cell, or leave it to its children, which inherit the mask (the skip
+flags of Fig. 6.3). Sphere + cone culling drops nodes outside the view. Leaves are classified
+exactly as core/lod.select classifies cells, so without culling both give the same cells.
 """
 
 from __future__ import annotations
@@ -15,12 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core import lod_tests
 from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lod import ALL_IN, LodConfig, classify, weight_near
+from core.lod_tests import Levels
 from core.terrain import Terrain
-
-MARGIN = 1e-4  # node-level distance decisions are conservative by this much; leaves decide
 
 
 @dataclass
@@ -36,24 +35,9 @@ class DrawList:
 
 def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None = None) -> DrawList:
     tree = terrain.tree
-    levels = config.levels
-    n_levels = len(levels)
+    lv = Levels.of(config)
+    n_levels = lv.count
     eye = np.asarray(eye, np.float64)
-    begin = np.array([lv.begin for lv in levels])
-    end = np.array([np.inf if lv.end is None else lv.end for lv in levels])
-    macro = np.array([lv.macro for lv in levels])
-    max_unplanarity = np.array(
-        [np.inf if lv.max_unplanarity is None else lv.max_unplanarity for lv in levels]
-    )
-    # each level's own zone, where no neighbour draws (macro-cells drawn by one level only)
-    prev_end = np.concatenate([[-np.inf], end[:-1]])
-    next_begin = np.concatenate([begin[1:], [np.inf]])
-    core_lo = np.maximum(begin, prev_end) + MARGIN
-    core_hi = np.minimum(end, next_begin) - MARGIN
-    # nodes shared by levels t and t+1: no cell may reach back into t-1 nor on into t+2
-    pair_lo = np.concatenate([[-np.inf], end[:-2] + MARGIN]) if n_levels > 1 else np.zeros(0)
-    pair_hi = np.concatenate([begin[2:] - MARGIN, [np.inf]]) if n_levels > 1 else np.zeros(0)
-    pair_limit = np.minimum(macro[:-1], macro[1:])
     ox, oz = terrain.origin
 
     records: list[tuple] = []  # (x0, z0, sx, sz, y_lo, y_hi, level, w, side) arrays
@@ -74,44 +58,21 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
         if level == 0:
             records.append(_leaves(terrain, eye, config, ix, iz, active))
             break
-        # horizontal distances from the eye to the nearest and farthest cell centre in the node
-        cx0, cx1 = ox + x0 + 0.5, ox + x1 - 0.5
-        cz0, cz1 = oz + z0 + 0.5, oz + z1 - 0.5
-        dx = np.maximum(np.maximum(cx0 - eye[0], eye[0] - cx1), 0.0)
-        dz = np.maximum(np.maximum(cz0 - eye[2], eye[2] - cz1), 0.0)
-        dmin = np.hypot(dx, dz)[:, None]
-        dmax = np.hypot(
-            np.maximum(np.abs(eye[0] - cx0), np.abs(eye[0] - cx1)),
-            np.maximum(np.abs(eye[2] - cz0), np.abs(eye[2] - cz1)),
-        )[:, None]
-        span = 1 << level  # node edge in cells
-        # the distance test: levels whose range the node misses drop it (and its children)
-        active &= (dmax >= begin - MARGIN) & (dmin < end + MARGIN)
-        # the unplanarity LOD test (6.4.4): macro-cells only on nearly flat ground
-        flat = (y_hi - y_lo)[:, None] <= max_unplanarity
+        nodes = _nodes(eye, ox, oz, (x0, z0, x1, z1), 1 << level, y_lo, y_hi)
+        active &= lod_tests.distance(nodes, lv)
+        is_flat = lod_tests.flat(nodes, lv)
         box = (x0, z0, x1 - x0, z1 - z0, y_lo, y_hi)
-        # the macro-cell test (6.2): small enough and wholly in the level's own zone
-        whole = active & flat & (span <= macro) & (dmin >= core_lo) & (dmax < core_hi)
-        node, t = np.nonzero(whole)
+        node, t = np.nonzero(active & is_flat & lod_tests.macro_cell(nodes, lv))
         if node.size:
             lod_w = np.full(node.size, ALL_IN, np.float32)
             records.append((*(a[node] for a in box), t, lod_w, np.zeros(node.size, np.float32)))
             active[node, t] = False
-        if n_levels > 1:
-            pair = (
-                active[:, :-1]
-                & active[:, 1:]
-                & flat[:, :-1]
-                & flat[:, 1:]
-                & (span <= pair_limit)
-                & (dmin >= pair_lo)
-                & (dmax < pair_hi)
-            )
-            node, t = np.nonzero(pair)
-            if node.size:
-                records.extend(_pair_records(eye, ox, oz, box, node, t, begin, end))
-                active[node, t] = False
-                active[node, t + 1] = False
+        pair = active[:, :-1] & active[:, 1:] & is_flat[:, :-1] & is_flat[:, 1:]
+        node, t = np.nonzero(pair & lod_tests.shared(nodes, lv))
+        if node.size:
+            records.extend(_pair_records(eye, ox, oz, box, node, t, lv.begin, lv.end))
+            active[node, t] = False
+            active[node, t + 1] = False
         keep = active.any(axis=1)
         ix, iz, parent = tree.children(level, ix[keep], iz[keep])
         active = active[keep][parent]
@@ -119,6 +80,20 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
     if config.silhouettes:
         _silhouettes(levels_out, config, eye, terrain.grass_height)
     return DrawList(levels_out, visited)
+
+
+def _nodes(eye, ox, oz, extent, span, y_lo, y_hi) -> lod_tests.Nodes:
+    """Horizontal distances from the eye to the nearest and farthest cell centre of each node."""
+    x0, z0, x1, z1 = extent
+    cx0, cx1 = ox + x0 + 0.5, ox + x1 - 0.5
+    cz0, cz1 = oz + z0 + 0.5, oz + z1 - 0.5
+    dx = np.maximum(np.maximum(cx0 - eye[0], eye[0] - cx1), 0.0)
+    dz = np.maximum(np.maximum(cz0 - eye[2], eye[2] - cz1), 0.0)
+    dmax = np.hypot(
+        np.maximum(np.abs(eye[0] - cx0), np.abs(eye[0] - cx1)),
+        np.maximum(np.abs(eye[2] - cz0), np.abs(eye[2] - cz1)),
+    )
+    return lod_tests.Nodes(np.hypot(dx, dz)[:, None], dmax[:, None], span, y_lo, y_hi)
 
 
 def _leaves(terrain, eye, config, ix, iz, active) -> tuple:

@@ -94,9 +94,8 @@ def test_volume_lookup_matches_the_blades_heights(headless, ctx, restore):
 
 
 def ramp_pixels(camera):
-    """Pixels whose ray meets the ramp's surface inside its cells, and pixels whose ray meets
-    the plain ground well away from the ramp,
-    with a margin of half a cell either way left out."""
+    """Pixels whose ray meets the ramp's surface inside its cells (half a cell in from the
+    edges), and pixels whose ray meets the plain ground well away from the ramp."""
     d = pixel_rays(camera, SIZE)
     e = camera.eye
     # y = 0.5 z + 2 over the cells: e.y + t d.y = 0.5 (e.z + t d.z) + 2
