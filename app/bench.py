@@ -15,6 +15,7 @@ SUITES = (
     "macrocells",
     "traversal",
     "lod_speedup",
+    "brush",
 )
 MODULES = {"techniques": "representations"}
 
