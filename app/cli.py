@@ -52,6 +52,7 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument(
         "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
     )
+    r.add_argument("--project", type=Path, help="project file (instead of --scene)")
     r.add_argument("--camera", help="named camera of the scene")
     r.add_argument("--eye", type=_vec3, help="camera position X,Y,Z (with --target)")
     r.add_argument("--target", type=_vec3, help="point the camera looks at X,Y,Z")
@@ -75,6 +76,7 @@ def parser() -> argparse.ArgumentParser:
 
     pr = sub.add_parser("profile", help="frame statistics per viewpoint or along a path")
     pr.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
+    pr.add_argument("--project", type=Path, help="project file (instead of --scene)")
     pr.add_argument("--path", help="camera path of the scene (default: every named camera)")
     pr.add_argument("--frames", type=int, default=None, help="frames per viewpoint or path")
     pr.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
@@ -82,6 +84,12 @@ def parser() -> argparse.ArgumentParser:
         "--only", choices=("geometry", "volume", "image"), help="one representation for all"
     )
     pr.add_argument("--out", type=Path, help="JSON file for every frame and the summaries")
+
+    n = sub.add_parser("new", help="write a project file started from a built-in scene")
+    n.add_argument("file", type=Path, help="project file to write (.sward)")
+    n.add_argument(
+        "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
+    )
 
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
@@ -91,14 +99,42 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def cmd_render(args: argparse.Namespace) -> int:
-    from app.headless import HeadlessRenderer
-    from core.params import PRESETS, ParameterError
+def _scene(args: argparse.Namespace):
+    """The scene of --project, or else of --scene."""
+    if getattr(args, "project", None) is not None:
+        from app.project import ProjectError, load_project
+
+        try:
+            return load_project(args.project)
+        except ProjectError as exc:
+            raise CliError(str(exc)) from None
+    try:
+        return get_scene(args.scene)
+    except KeyError as exc:
+        raise CliError(exc.args[0]) from None
+
+
+def cmd_new(args: argparse.Namespace) -> int:
+    from app.project import ProjectError, save_project
 
     try:
         scene = get_scene(args.scene)
     except KeyError as exc:
         raise CliError(exc.args[0]) from None
+    _writable(args.file)
+    try:
+        save_project(args.file, scene)
+    except ProjectError as exc:
+        raise CliError(str(exc)) from None
+    print(f"wrote {args.file} (scene {scene.name})")
+    return 0
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    from app.headless import HeadlessRenderer
+    from core.params import PRESETS, ParameterError
+
+    scene = _scene(args)
     if (args.eye is None) != (args.target is None):
         raise CliError("--eye and --target go together")
     if args.out is None and args.stats is None:
@@ -165,10 +201,7 @@ def cmd_render(args: argparse.Namespace) -> int:
 def cmd_profile(args: argparse.Namespace) -> int:
     from app.profile import profile
 
-    try:
-        scene = get_scene(args.scene)
-    except KeyError as exc:
-        raise CliError(exc.args[0]) from None
+    scene = _scene(args)
     if args.path is not None and args.path not in scene.paths:
         known = ", ".join(scene.paths) or "none"
         raise CliError(f"unknown camera path {args.path!r} for scene {scene.name}; paths: {known}")
@@ -235,6 +268,7 @@ def main(argv: list[str] | None = None) -> int:
         "render": cmd_render,
         "scenes": cmd_scenes,
         "profile": cmd_profile,
+        "new": cmd_new,
         "info": cmd_info,
         "bench": cmd_bench,
     }[args.command]

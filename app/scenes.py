@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from core.camera import Camera
-from core.design_maps import DesignMaps
+from core.design_maps import LAYER_INDEX, DesignMaps
 from core.grid import grid_instances
 from core.lod import LodConfig, LodLevel
 from core.markings import football_colour_map
@@ -45,7 +45,7 @@ class GrassType:
             raise ValueError(f"grass type {self.name}: density channel must be 1, 2 or 3")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Scene:
     name: str
     description: str
@@ -68,6 +68,8 @@ class Scene:
     height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
     density_map: Callable[[int, int], np.ndarray] | None = None
     grass: tuple[GrassType, ...] = ()  # further grass types beside the first
+    # a project's painted maps (layers, rows, columns, 4): used instead of the builders above
+    stack: np.ndarray | None = None
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
@@ -75,6 +77,9 @@ class Scene:
     def heights(self) -> np.ndarray | None:
         """The height map as the GPU holds it (half floats), so that the terrain's bounding
         volumes and the rendered ground agree to the last bit."""
+        if self.stack is not None:
+            h = self.stack[LAYER_INDEX["height"], :, :, 0] if self.height_scale > 0 else None
+            return None if h is None else h.astype(np.float16).astype(np.float32)
         if self.height_map is None:
             return None
         h = np.asarray(self.height_map(*self.map_size), np.float32)
@@ -91,6 +96,8 @@ class Scene:
 
     def design_maps(self) -> DesignMaps:
         """The scene's design-map stack: procedural defaults until maps are painted."""
+        if self.stack is not None:
+            return DesignMaps.from_stack(self.stack)
         if self.colour_map is None:
             maps = DesignMaps.procedural(self.map_size[0], seed=self.params.seed, tint=self.tint)
             if maps.size != self.map_size:

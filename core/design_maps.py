@@ -56,6 +56,20 @@ class DesignMaps:
         for i, layer in enumerate(LAYERS):
             self.stack[i] = layer.default
 
+    @classmethod
+    def from_stack(cls, stack: np.ndarray) -> DesignMaps:
+        """Maps holding a copy of `stack` (layers, rows, columns, 4), e.g. read from a file."""
+        stack = np.asarray(stack, np.float32)
+        if stack.ndim != 4 or stack.shape[0] != len(LAYERS) or stack.shape[3] != 4:
+            raise ValueError(
+                f"a design-map stack must be ({len(LAYERS)}, rows, columns, 4), got {stack.shape}"
+            )
+        if not np.all(np.isfinite(stack)):
+            raise ValueError("a design-map stack must hold finite numbers")
+        maps = cls(stack.shape[2], stack.shape[1])
+        maps.stack[:] = stack
+        return maps
+
     @property
     def size(self) -> tuple[int, int]:
         """(width, height) in texels."""

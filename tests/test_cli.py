@@ -132,3 +132,20 @@ def test_profile_along_a_path_and_bad_path(tmp_path):
     assert r.returncode == 2
     assert "unknown camera path 'nowhere'" in r.stderr and "orbit" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_new_writes_a_project_that_render_reads(tmp_path):
+    path = tmp_path / "field.sward"
+    r = sward("new", str(path), "--scene", "patch-grid")
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "p.png"
+    r = sward("render", "--project", str(path), "--size", "96x64", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    with Image.open(out) as image:
+        assert image.size == (96, 64)
+    bad = tmp_path / "bad.sward"
+    bad.write_text("not a project")
+    r = sward("render", "--project", str(bad), "--out", str(out))
+    assert r.returncode == 2
+    assert "bad.sward" in r.stderr and "not a zip file" in r.stderr
+    assert "Traceback" not in r.stderr
