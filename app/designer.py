@@ -8,6 +8,7 @@ from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoCommand, QUndoStack
 from PySide6.QtWidgets import QApplication, QDockWidget, QFileDialog, QLabel, QMainWindow
 
+from app.projects import ProjectActions
 from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
 from core.design import PatchDesign
 from core.params import PatchParams, SliceParams
@@ -116,10 +117,12 @@ class DesignerWindow(QMainWindow):
     def __init__(self, scene: Scene) -> None:
         super().__init__()
         self.scene = scene
-        self.setWindowTitle(f"Sward — {scene.name}")
+        self.setWindowTitle(f"Sward — {scene.name}[*]")
         self.design = PatchDesign(scene.params, scene.density)
         self.undo_stack = QUndoStack(self)
         self.builder = PatchBuilder(self)
+        self.projects = ProjectActions(self)
+        self.undo_stack.cleanChanged.connect(self._on_clean_changed)
         self.patch: GrassPatch | None = None
 
         self.viewport = GrassViewport(scene.camera())
@@ -155,16 +158,25 @@ class DesignerWindow(QMainWindow):
 
     def _build_menus(self, dock: QDockWidget) -> None:
         file_menu = self.menuBar().addMenu("&File")
-        save = QAction("Save &image…", self, shortcut=QKeySequence("Ctrl+S"))
-        save.triggered.connect(self._save_image)
-        quit_ = QAction("&Quit", self, shortcut=QKeySequence.StandardKey.Quit)
-        quit_.triggered.connect(self.close)
-        scenes = file_menu.addMenu("Open built-in &scene")
+        scenes = file_menu.addMenu("&New from built-in scene")
         for name in SCENES:
             act = QAction(f"{name} — {SCENES[name].description}", self)
-            act.triggered.connect(lambda _=False, n=name: self.open_scene(get_scene(n)))
+            act.triggered.connect(lambda _=False, n=name: self.projects.new(get_scene(n)))
             scenes.addAction(act)
-        file_menu.addActions([save, quit_])
+        open_ = QAction("&Open project…", self, shortcut=QKeySequence.StandardKey.Open)
+        open_.triggered.connect(lambda: self.projects.open())
+        self.recent_menu = file_menu.addMenu("Open &recent")
+        save = QAction("&Save project", self, shortcut=QKeySequence.StandardKey.Save)
+        save.triggered.connect(self.projects.save)
+        save_as = QAction("Save project &as…", self, shortcut=QKeySequence("Ctrl+Shift+S"))
+        save_as.triggered.connect(lambda: self.projects.save_as())
+        image = QAction("Save &image…", self, shortcut=QKeySequence("Ctrl+E"))
+        image.triggered.connect(self._save_image)
+        quit_ = QAction("&Quit", self, shortcut=QKeySequence.StandardKey.Quit)
+        quit_.triggered.connect(self.close)
+        file_menu.insertAction(scenes.menuAction(), open_)
+        file_menu.addActions([save, save_as, image, quit_])
+        self.fill_recent_menu()
         edit = self.menuBar().addMenu("&Edit")
         undo = self.undo_stack.createUndoAction(self, "&Undo")
         undo.setShortcut(QKeySequence.StandardKey.Undo)
@@ -207,10 +219,22 @@ class DesignerWindow(QMainWindow):
             )
             self.camera_menu.addAction(act)
 
+    def _on_clean_changed(self, clean: bool) -> None:
+        self.setWindowModified(not clean)  # "*" in the title: unsaved changes
+
+    def fill_recent_menu(self) -> None:
+        self.recent_menu.clear()
+        for path in self.projects.recent():
+            act = QAction(path, self)
+            act.triggered.connect(lambda _=False, p=path: self.projects.open(p))
+            self.recent_menu.addAction(act)
+        self.recent_menu.setEnabled(bool(self.projects.recent()))
+
     def _show_scene(self, scene: Scene) -> None:
         """Hand a scene's terrain, maps, props, LOD levels and fog to the viewport."""
         self.viewport.set_terrain(scene.terrain())
-        self.viewport.set_design_maps(scene.design_maps())
+        self.maps = scene.design_maps()
+        self.viewport.set_design_maps(self.maps)
         self.viewport.set_props(scene.prop_boxes())
         self.viewport.set_lod(scene.lod)
         self.viewport.set_fog(scene.fog_distance)
@@ -224,7 +248,7 @@ class DesignerWindow(QMainWindow):
         QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
         try:
             self.scene = scene
-            self.setWindowTitle(f"Sward — {scene.name}")
+            self.setWindowTitle(f"Sward — {scene.name}[*]")
             self.undo_stack.clear()
             self._show_scene(scene)
             self.viewport.set_camera(scene.camera())
@@ -275,6 +299,9 @@ class DesignerWindow(QMainWindow):
                 self.statusBar().showMessage(f"could not write {path}", 5000)
 
     def closeEvent(self, event) -> None:
+        if not self.projects.confirm_discard():
+            event.ignore()
+            return
         self.builder.wait()
         self.viewport.release_gl()
         super().closeEvent(event)

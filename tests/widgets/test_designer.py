@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from PySide6.QtCore import QPoint, Qt
+from PySide6.QtCore import QPoint, QSettings, Qt
 
 from app.designer import DesignerWindow
 from app.scenes import get_scene
@@ -12,7 +12,12 @@ pytestmark = pytest.mark.gui
 
 
 @pytest.fixture
-def window(qtbot):
+def window(qtbot, tmp_path, monkeypatch):
+    from PySide6.QtWidgets import QMessageBox
+
+    QSettings.setPath(QSettings.Format.NativeFormat, QSettings.Scope.UserScope, str(tmp_path))
+    # closing with unsaved edits asks; a test answers "discard" unless it says otherwise
+    monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
     scene = get_scene("patch-grid")
     scene = type(scene)(**{**scene.__dict__, "params": scene.params.replace(blade_count=600)})
     win = DesignerWindow(scene)
@@ -144,7 +149,7 @@ def test_opening_a_built_in_scene_replaces_terrain_cameras_and_patch(window, qtb
 
     meadow = get_scene("meadow")
     window.open_scene(meadow)
-    assert window.windowTitle() == "Sward — meadow"
+    assert window.windowTitle().startswith("Sward — meadow")
     assert [a.text() for a in window.camera_menu.actions()] == list(meadow.cameras)
     qtbot.waitUntil(
         lambda: window.patch is not None and window.patch.params == meadow.params, timeout=30000
@@ -156,3 +161,50 @@ def test_opening_a_built_in_scene_replaces_terrain_cameras_and_patch(window, qtb
     assert stats.c_g > 0 and stats.c_v > 0  # the meadow's three LOD levels are drawn
     assert window.viewport.pipeline.terrain.height_scale == meadow.height_scale
     assert not window.undo_stack.canUndo()
+
+
+def test_project_saved_and_reopened_restores_the_parameters(window, qtbot, tmp_path, monkeypatch):
+    from PySide6.QtWidgets import QMessageBox
+
+    path = tmp_path / "mine.sward"
+    window.panel.param("density").setValue(0.6)
+    assert window.isWindowModified()
+    assert window.projects.save_as(path)
+    assert not window.isWindowModified()
+    saved_params = window.design.params
+    window.panel.param("density").setValue(0.3)
+    monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
+    assert window.projects.open(path)
+    assert window.design.density == pytest.approx(0.6)
+    assert window.design.params == saved_params
+    assert str(path.resolve()) in window.projects.recent()
+    assert [a.text() for a in window.recent_menu.actions()] == [str(path.resolve())]
+
+
+def test_a_corrupt_project_gives_a_message_and_keeps_the_open_one(window, tmp_path, monkeypatch):
+    from PySide6.QtWidgets import QMessageBox
+
+    bad = tmp_path / "broken.sward"
+    bad.write_bytes(b"PK\x03\x04 broken")
+    messages = []
+    monkeypatch.setattr(QMessageBox, "warning", lambda parent, title, text: messages.append(text))
+    before = (window.scene.name, window.design.params, window.design.density)
+    assert not window.projects.open(bad)
+    assert len(messages) == 1 and "broken.sward" in messages[0]
+    assert (window.scene.name, window.design.params, window.design.density) == before
+
+
+def test_closing_with_unsaved_changes_asks_and_cancel_keeps_the_window(window, monkeypatch):
+    from PySide6.QtWidgets import QMessageBox
+
+    window.panel.param("density").setValue(0.4)
+    asked = []
+
+    def cancel(*args, **kwargs):
+        asked.append(True)
+        return QMessageBox.StandardButton.Cancel
+
+    monkeypatch.setattr(QMessageBox, "question", cancel)
+    window.close()
+    assert asked and window.isVisible()
+    window.undo_stack.setClean()
