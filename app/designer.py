@@ -118,7 +118,7 @@ class DesignerWindow(QMainWindow):
         super().__init__()
         self.scene = scene
         self.setWindowTitle(f"Sward — {scene.name}[*]")
-        self.design = PatchDesign(scene.params, scene.density)
+        self.design = PatchDesign(scene.params, scene.density, scene.slices)
         self.undo_stack = QUndoStack(self)
         self.builder = PatchBuilder(self)
         self.projects = ProjectActions(self)
@@ -254,6 +254,7 @@ class DesignerWindow(QMainWindow):
             self.viewport.set_camera(scene.camera())
             self._fill_camera_menu()
             self.design.density = scene.density
+            self.design.slices = scene.slices
             self.design.params = scene.params
         finally:
             QApplication.restoreOverrideCursor()

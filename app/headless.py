@@ -29,6 +29,7 @@ class HeadlessRenderer:
         self, scene: Scene, params: PatchParams | None = None, density: float | None = None
     ) -> GrassPatch:
         patch = generate_patch(params or scene.params)
+        self.pipeline.set_slice_params(scene.slices)
         self.pipeline.set_patch(patch)
         self.pipeline.set_grass_types(
             [(generate_patch(kind.params), kind.lod, kind.channel) for kind in scene.grass]

@@ -19,7 +19,7 @@ import numpy as np
 from app.scenes import CameraSpec, GrassType, Scene
 from core.design_maps import DesignMaps
 from core.lod import LodConfig, LodLevel
-from core.params import ParameterError, PatchParams
+from core.params import ParameterError, PatchParams, SliceParams
 
 FORMAT = "sward-project"
 VERSION = 1
@@ -99,6 +99,7 @@ def scene_document(scene: Scene) -> dict:
             [list(row[0]), list(row[1]), list(row[2]), *(row[3:] or [])] for row in scene.props
         ],
         "fog_distance": scene.fog_distance,
+        "slices": dataclasses.asdict(scene.slices),
     }
 
 
@@ -127,6 +128,7 @@ def scene_from_document(doc: dict, stack: np.ndarray) -> Scene:
             for g in doc.get("grass", [])
         ),
         stack=stack,
+        slices=SliceParams(**doc.get("slices", {})),
     )
 
 

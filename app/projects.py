@@ -26,7 +26,11 @@ class ProjectActions(QObject):
     def current_scene(self):
         w = self.window
         return dataclasses.replace(
-            w.scene, params=w.design.params, density=w.design.density, stack=w.maps.stack
+            w.scene,
+            params=w.design.params,
+            density=w.design.density,
+            slices=w.design.slices,
+            stack=w.maps.stack,
         )
 
     # -- actions -----------------------------------------------------------------------------

@@ -13,7 +13,7 @@ from core.design_maps import LAYER_INDEX, DesignMaps
 from core.grid import grid_instances
 from core.lod import LodConfig, LodLevel
 from core.markings import football_colour_map
-from core.params import DEFAULT_PRESET, PRESETS, PatchParams
+from core.params import DEFAULT_PRESET, PRESETS, PatchParams, SliceParams
 from core.props import boxes
 from core.terrain import Terrain
 
@@ -70,6 +70,7 @@ class Scene:
     grass: tuple[GrassType, ...] = ()  # further grass types beside the first
     # a project's painted maps (layers, rows, columns, 4): used instead of the builders above
     stack: np.ndarray | None = None
+    slices: SliceParams = field(default_factory=SliceParams)  # how patches become slices
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)

@@ -123,6 +123,8 @@ class FramePipeline:
         self._convert()
 
     def set_slice_params(self, params: SliceParams) -> None:
+        if params == self.slice_params:
+            return
         self.slice_params = params
         self._convert()
 

@@ -27,10 +27,10 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     maps = meadow.design_maps()
     maps.write("color", 10, 10, np.full((5, 5, 4), 0.25))  # something painted
     lod = LodConfig((LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8)))
-    scene = dataclasses.replace(meadow, lod=lod)
+    scene = dataclasses.replace(meadow, lod=lod, slices=meadow.slices.replace(slices=4, top=256))
     save_project(path, scene, maps)
     loaded = load_project(path)
-    assert loaded.params == scene.params and loaded.lod == lod
+    assert loaded.params == scene.params and loaded.lod == lod and loaded.slices == scene.slices
     assert loaded.grass == tuple(dataclasses.replace(g, density_map=None) for g in scene.grass)
     assert loaded.cameras == scene.cameras and loaded.paths == scene.paths
     assert loaded.grid == scene.grid and loaded.height_scale == scene.height_scale
