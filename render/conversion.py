@@ -6,8 +6,7 @@ the other horizontal axis and v up the patch height. The horizontal slice: the w
 above. The patch is drawn 3 × 3 times (its neighbours too), so blades of the next tile that lean
 into the square are captured and the slices tile seamlessly like the geometry does.
 
-Every slice keeps: albedo + alpha, patch-space normal, density threshold, and the height above
-the ground of what it shows (AO_blade, eq. 6.11). The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
+Every slice keeps: albedo + alpha, patch-space normal and density threshold. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
 z = 0 for the horizontal slice.
 """
 
@@ -35,7 +34,6 @@ class SliceLayers:
     color: np.ndarray  # (n, h, w, 4) float32, albedo + alpha
     normal: np.ndarray  # (n, h, w, 3) float32, unit normals in patch space
     threshold: np.ndarray  # (n, h, w) float32, 0 where empty
-    height: np.ndarray  # (n, h, w) float32, world units above the ground, 0 where empty
 
 
 @dataclass
@@ -144,7 +142,7 @@ class PatchConverter:
         normal = np.frombuffer(targets[1].read(), np.float32).reshape(h, w, 4)[..., :3] * 2 - 1
         data = np.frombuffer(targets[2].read(), np.float32).reshape(h, w, 4)
         release_framebuffer(fbo, depth, *targets)
-        return color, normal, data[..., 0].copy(), data[..., 1].copy()
+        return color, normal, data[..., 0].copy()
 
     def release(self) -> None:
         self.geometry.release()

@@ -61,7 +61,6 @@ class FramePipeline:
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
         self.culling = True
-        self.last_visited = 0  # quadtree nodes the last traversal tested
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
 
     # -- the first grass type, as the designer and the tests reach it -------------------------
@@ -294,11 +293,10 @@ class FramePipeline:
         drawn = []
         for layer in self.layers:
             tq = time.perf_counter()
-            batches, visited = layer.batches(
+            batches = layer.batches(
                 mode, camera, w / max(h, 1), self.terrain, frustum, self.slice_params.slices
             )
             stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
-            self.last_visited = visited
             drawn.append(batches)
             patch = layer.patch
             for (representation, _), (_renderer, count) in batches.items():

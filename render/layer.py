@@ -133,19 +133,16 @@ class GrassLayer:
         terrain: Terrain | None,
         frustum: Frustum | None,
         slices: int,
-    ) -> tuple[dict[tuple[str, int], tuple[object, int]], int]:
-        """(representation, slices) → (renderer, instance count) for one view, and the quadtree
-        nodes visited. In LOD mode the cells of every level are selected by distance and levels
+    ) -> dict[tuple[str, int], tuple[object, int]]:
+        """(representation, slices) → (renderer, instance count) for one view. In LOD mode the cells of every level are selected by distance and levels
         that share a renderer are drawn in one call; otherwise one representation draws every
         cell (no macro-cells)."""
         if mode == "lod":
             config = self.lod
         else:
             config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
-        visited = 0
         if terrain is not None:
-            drawn = traverse(terrain, camera.eye, config, frustum)
-            parts, visited = drawn.levels, drawn.visited
+            parts = traverse(terrain, camera.eye, config, frustum).levels
         elif mode == "lod":
             parts = lod_select(self._instances, camera.eye, config)
         else:
@@ -162,7 +159,7 @@ class GrassLayer:
                 renderer = self.volume(n)
             renderer.set_instances(cells)
             batches[key] = (renderer, int(cells.size))
-        return batches, visited
+        return batches
 
     def release(self) -> None:
         for renderer in self.renderers:

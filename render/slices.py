@@ -36,16 +36,10 @@ class LayerTextures:
         self.data.release()
 
 
-def canonical_data(layers: SliceLayers, height: float) -> np.ndarray:
-    """(n, h, w, 5): the normal turned up, height / patch height, threshold."""
+def canonical_data(layers: SliceLayers) -> np.ndarray:
+    """(n, h, w, 4): the normal turned up and encoded 0 … 1, and the density threshold."""
     n = layers.normal * np.where(layers.normal[..., 1:2] < 0, -1.0, 1.0)
-    h = np.clip(layers.height / max(height, 1e-6), 0.0, 1.0)
-    return np.concatenate([n, h[..., None], layers.threshold[..., None]], axis=-1)
-
-
-def pack_data(level: np.ndarray) -> np.ndarray:
-    """One mip level of canonical data into the texture's 4 channels (0 … 1)."""
-    return np.concatenate([level[..., :3] * 0.5 + 0.5, level[..., 4:5]], axis=-1).astype(np.float32)
+    return np.concatenate([n * 0.5 + 0.5, layers.threshold[..., None]], axis=-1)
 
 
 def slice_levels(height: int, width: int) -> int:
@@ -62,17 +56,17 @@ class LayerLevels:
     repeat_v: bool
 
 
-def layer_levels(
-    layers: SliceLayers, height: float, top: bool = False, alpha_ref: float = 0.5
-) -> LayerLevels:
+def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5) -> LayerLevels:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
     color_levels = stacked_slice_mips(layers.color, count, alpha_ref)
-    data = canonical_data(layers, height)
+    data = canonical_data(layers)
     chains = [
         weighted_chain(data[i], mean_alpha_chain(layers.color[i, ..., 3], count)) for i in range(n)
     ]
-    data_levels = [pack_data(np.concatenate(level, axis=0)) for level in zip(*chains, strict=True)]
+    data_levels = [
+        np.concatenate(level, axis=0).astype(np.float32) for level in zip(*chains, strict=True)
+    ]
     return LayerLevels(color_levels, data_levels, n, repeat_v=top)
 
 
@@ -98,9 +92,9 @@ class SliceLevels:
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
         h = sliced.height
         return cls(
-            layer_levels(sliced.x, h),
-            layer_levels(sliced.z, h),
-            layer_levels(sliced.top, h, top=True),
+            layer_levels(sliced.x),
+            layer_levels(sliced.z),
+            layer_levels(sliced.top, top=True),
             h,
         )
 

@@ -2,8 +2,8 @@
 // Patch conversion (thesis 4.2.1): the geometry patch seen by an orthographic camera, kept
 // between two clip planes (clip distances: triangles outside the slab are clipped before they
 // are rasterised), written to three layers: albedo + alpha, patch-space normal, and the blade's
-// density threshold with the height above the ground (for AO_blade, eq. 6.11). Colour is stored
-// unlit and without AO so the slices are lit when drawn, like the blades (6.4.3).
+// density threshold. Colour is stored unlit and without AO so the slices are lit when drawn,
+// like the blades (6.4.3).
 
 #if defined VERTEX_SHADER
 
@@ -16,7 +16,6 @@ uniform sampler2D u_blade;
 uniform float u_alpha_ref;
 
 in vec3 v_world;
-in float v_height;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec3 v_color;
@@ -32,7 +31,7 @@ void main() {
     vec3 n = normalize(v_normal);
     f_color = vec4(v_color * tex.rgb, tex.a);
     f_normal = vec4(n * 0.5 + 0.5, 1.0);
-    f_threshold = vec4(v_threshold, v_height, 0.0, 1.0);  // threshold, height above ground
+    f_threshold = vec4(v_threshold, 0.0, 0.0, 1.0);
 }
 
 #endif
