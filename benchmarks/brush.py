@@ -34,6 +34,7 @@ def brush(moves: int = 60) -> list[dict]:
             y = 1024.0 + 200.0 * ((i % 20) / 20.0)
             start = time.perf_counter()
             stroke.add(x % 2000, y)
+            mirror.flush()
             ctx.finish()
             total.append((time.perf_counter() - start) * 1000.0)
         stroke.undo()

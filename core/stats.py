@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 
 @dataclass
@@ -26,6 +26,14 @@ class FrameStats:
     triangles: int = 0
     width: int = 0
     height: int = 0
+    # per grass type and LOD level drawn: (type index, representation, slices, instances)
+    levels: list[tuple[int, str, int, int]] = field(default_factory=list)
+
+    def level_count(self, layer: int, representation: str, slices: int = 0) -> int:
+        """Instances the LOD level (representation, slices) of one grass type drew."""
+        return sum(
+            n for i, r, s, n in self.levels if (i, r) == (layer, representation) and s == slices
+        )
 
     @property
     def fps(self) -> float:

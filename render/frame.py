@@ -30,6 +30,7 @@ from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
 from render.layer import GrassLayer
+from render.overlay import OverlayRenderer
 from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
@@ -49,6 +50,7 @@ class FramePipeline:
         self.layers: list[GrassLayer] = [GrassLayer(ctx, 0)]
         self.ground = GroundRenderer(ctx)
         self.props = PropRenderer(ctx)
+        self.overlay = OverlayRenderer(ctx)  # brush outline, LOD rings: drawn last, untimed
         self.only = "geometry"  # one of MODES
         self.view = "shaded"  # shaded | techniques
         self.slice_params = SliceParams()
@@ -119,6 +121,11 @@ class FramePipeline:
 
     def set_lod(self, lod: LodConfig) -> None:
         self.lod = lod
+        self._convert()
+
+    def set_layer_lod(self, index: int, lod: LodConfig) -> None:
+        """The LOD levels of one grass type (0: the designed patch), patch and slices kept."""
+        self.layers[index].lod = lod
         self._convert()
 
     def set_slice_params(self, params: SliceParams) -> None:
@@ -291,7 +298,7 @@ class FramePipeline:
 
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
         drawn = []
-        for layer in self.layers:
+        for index, layer in enumerate(self.layers):
             tq = time.perf_counter()
             batches = layer.batches(
                 mode, camera, w / max(h, 1), self.terrain, frustum, self.slice_params.slices
@@ -299,7 +306,8 @@ class FramePipeline:
             stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
             drawn.append(batches)
             patch = layer.patch
-            for (representation, _), (_renderer, count) in batches.items():
+            for (representation, slices), (_renderer, count) in batches.items():
+                stats.levels.append((index, representation, slices, count))
                 counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
                 setattr(stats, counter, getattr(stats, counter) + count)
                 if representation == "geometry" and patch is not None:
@@ -317,12 +325,14 @@ class FramePipeline:
                 key = {"geometry": "t_g_ms", "volume": "t_v_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
+        self.overlay.draw(frame)
 
     def release(self) -> None:
         for layer in self.layers:
             layer.release()
         self.ground.release()
         self.props.release()
+        self.overlay.release()
         self.design.release()
         if self._converter is not None:
             self._converter.release()

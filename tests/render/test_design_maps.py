@@ -42,6 +42,9 @@ def test_an_edit_uploads_its_rectangle_only(ctx):
     maps = DesignMaps(64)
     mirror = DesignMapTextures(ctx, maps)
     maps.write("diffuse", 10, 20, np.full((5, 7, 3), 0.25))
+    maps.write("diffuse", 12, 21, np.full((2, 2, 3), 0.25))  # inside: one upload for both
+    assert mirror.pending  # nothing uploaded before the frame (no context may be current)
+    mirror.flush()
     assert mirror.uploaded_texels == 5 * 7
     w, h = maps.size
     gpu = np.frombuffer(mirror.texture.read(), np.float16).reshape(-1, h, w, 4)

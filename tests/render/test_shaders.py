@@ -41,6 +41,7 @@ EXPECTED = {
         "in_config",
     },
     "ground.glsl": {"u_view_proj", "u_extent", "u_grass_rect", "u_design", "in_corner"},
+    "overlay.glsl": {"u_view_proj", "u_color", "in_position"},
     "props.glsl": {"u_view_proj", "u_light_dir", "in_position", "in_centre", "in_size"},
 }
 
