@@ -5,9 +5,10 @@ from __future__ import annotations
 import sys
 
 from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
-from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoCommand, QUndoStack
+from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoStack
 from PySide6.QtWidgets import QApplication, QDockWidget, QFileDialog, QLabel, QMainWindow
 
+from app import commands
 from app.projects import ProjectActions
 from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
 from core.design import PatchDesign
@@ -58,51 +59,6 @@ class PatchBuilder(QObject):
         self.pool.waitForDone()
 
 
-class SetParams(QUndoCommand):
-    def __init__(self, design: PatchDesign, old: PatchParams, new: PatchParams) -> None:
-        super().__init__("change blades")
-        self.design, self.old, self.new = design, old, new
-
-    def redo(self) -> None:
-        self.design.params = self.new
-
-    def undo(self) -> None:
-        self.design.params = self.old
-
-
-class SetDensity(QUndoCommand):
-    ID = 1
-
-    def __init__(self, design: PatchDesign, old: float, new: float) -> None:
-        super().__init__("change density")
-        self.design, self.old, self.new = design, old, new
-
-    def id(self) -> int:
-        return self.ID
-
-    def mergeWith(self, other) -> bool:  # a slider drag is one undo step
-        self.new = other.new
-        return True
-
-    def redo(self) -> None:
-        self.design.density = self.new
-
-    def undo(self) -> None:
-        self.design.density = self.old
-
-
-class SetSlices(QUndoCommand):
-    def __init__(self, design: PatchDesign, old: SliceParams, new: SliceParams) -> None:
-        super().__init__("change slices")
-        self.design, self.old, self.new = design, old, new
-
-    def redo(self) -> None:
-        self.design.slices = self.new
-
-    def undo(self) -> None:
-        self.design.slices = self.old
-
-
 # (mode, menu text, shortcut): how the viewport draws the cells (render/frame.py MODES)
 REPRESENTATIONS = (
     ("lod", "&LOD zones (all three)", "Ctrl+1"),
@@ -120,6 +76,7 @@ class DesignerWindow(QMainWindow):
         self.setWindowTitle(f"Sward — {scene.name}[*]")
         self.design = PatchDesign(scene.params, scene.density, scene.slices)
         self.undo_stack = QUndoStack(self)
+        self.history_cap = commands.MEMORY_CAP
         self.builder = PatchBuilder(self)
         self.projects = ProjectActions(self)
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
@@ -260,17 +217,27 @@ class DesignerWindow(QMainWindow):
             QApplication.restoreOverrideCursor()
 
     # -- edits become undoable commands ------------------------------------------------------
+    def push(self, command: commands.Command) -> None:
+        """Every edit goes through here: onto the undo stack, under its memory cap."""
+        dropped = commands.push(self.undo_stack, command, self.history_cap)
+        if dropped:
+            self.statusBar().showMessage(
+                f"undo history over {self.history_cap // 2**20} MB: "
+                f"the oldest {dropped} step(s) can no longer be undone",
+                6000,
+            )
+
     def _push_params(self, params: PatchParams) -> None:
         if params != self.design.params:
-            self.undo_stack.push(SetParams(self.design, self.design.params, params))
+            self.push(commands.set_params(self.design, params))
 
     def _push_slices(self, slices: SliceParams) -> None:
         if slices != self.design.slices:
-            self.undo_stack.push(SetSlices(self.design, self.design.slices, slices))
+            self.push(commands.set_slices(self.design, slices))
 
     def _push_density(self, density: float) -> None:
         if density != self.design.density:
-            self.undo_stack.push(SetDensity(self.design, self.design.density, density))
+            self.push(commands.set_density(self.design, density))
 
     # -- results -----------------------------------------------------------------------------
     def _on_patch_ready(self, patch: GrassPatch) -> None:

@@ -77,6 +77,7 @@ class Stroke:
     brush: Brush
     channel: int | None = None  # density: which grass type
     saved: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
+    after: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
     dabs: int = 0
     _last: tuple[float, float] | None = None
     _carry: float = 0.0
@@ -174,10 +175,25 @@ class Stroke:
                     tile = layer[ty * TILE : (ty + 1) * TILE, tx * TILE : (tx + 1) * TILE]
                     self.saved[(tx, ty)] = np.array(tile)
 
-    # -- undo --------------------------------------------------------------------------------
+    # -- undo ------------------------------------------------------------------------------
+    def finish(self) -> None:
+        """Keep the painted texels of the touched tiles too, so the stroke can be redone."""
+        layer = self.maps.layer(self.layer)
+        self.after = {
+            (tx, ty): np.array(layer[ty * TILE : (ty + 1) * TILE, tx * TILE : (tx + 1) * TILE])
+            for tx, ty in self.saved
+        }
+
     def undo(self) -> None:
         """Put back every texel the stroke changed."""
-        for (tx, ty), tile in self.saved.items():
+        self._put(self.saved)
+
+    def redo(self) -> None:
+        """Paint the stroke's texels again after an undo (needs `finish`)."""
+        self._put(self.after)
+
+    def _put(self, tiles: dict[tuple[int, int], np.ndarray]) -> None:
+        for (tx, ty), tile in tiles.items():
             if self.channel is not None:
                 self.maps.write(
                     self.layer, tx * TILE, ty * TILE, tile[..., self.channel], channel=self.channel
@@ -187,4 +203,17 @@ class Stroke:
 
     @property
     def memory_bytes(self) -> int:
-        return sum(t.nbytes for t in self.saved.values())
+        """What the stroke keeps for undo and redo."""
+        tiles = [*self.saved.values(), *self.after.values()]
+        return sum(t.nbytes for t in tiles)
+
+    @property
+    def bounds(self) -> tuple[int, int, int, int] | None:
+        """(x, y, width, height) in texels of the tiles the stroke touched."""
+        if not self.saved:
+            return None
+        xs = [tx for tx, _ in self.saved]
+        ys = [ty for _, ty in self.saved]
+        w, h = self.maps.size
+        x0, y0 = min(xs) * TILE, min(ys) * TILE
+        return (x0, y0, min((max(xs) + 1) * TILE, w) - x0, min((max(ys) + 1) * TILE, h) - y0)

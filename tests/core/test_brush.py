@@ -41,9 +41,16 @@ def test_dabs_follow_the_path_at_the_spacing_and_undo_restores_exactly():
     changed = np.any(maps.stack != before, axis=-1)
     rows, cols = np.nonzero(changed[1])
     assert rows.min() >= 117 and rows.max() <= 139 and cols.min() >= 0 and cols.max() <= 221
+    stroke.finish()
+    painted = maps.stack.copy()
     stroke.undo()
     assert np.array_equal(maps.stack, before)
-    assert stroke.memory_bytes < before[1].nbytes  # only the touched tiles were kept
+    # only the touched tiles (2 rows x 4 columns of 64²) were kept, before and after
+    assert len(stroke.saved) == 8 and stroke.memory_bytes == 2 * 8 * 64 * 64 * 4 * 4
+    stroke.redo()
+    assert np.array_equal(maps.stack, painted)
+    x, y, w, h = stroke.bounds
+    assert x == 0 and y <= 117 and y + h >= 140 and x + w >= 222
 
 
 def test_erase_returns_to_the_default_and_smooth_evens_out():

@@ -1,0 +1,138 @@
+"""The designer's undoable edits (QUndoStack commands) and the history's memory cap.
+
+Every command applies its change in `apply` and takes it back in `revert`; `clone` makes a
+fresh command holding the same change, so the history can be rebuilt without its oldest steps
+when the paint strokes it keeps grow past the memory cap (QUndoStack can only limit the number
+of steps, and only while it is empty)."""
+
+from __future__ import annotations
+
+from PySide6.QtGui import QUndoCommand, QUndoStack
+
+from core.brush import Stroke
+from core.design import PatchDesign
+from core.params import PatchParams, SliceParams
+
+MEMORY_CAP = 512 * 1024 * 1024  # bytes of paint-stroke texels the history keeps
+
+
+class Command(QUndoCommand):
+    def __init__(self, text: str) -> None:
+        super().__init__(text)
+        self._skip_redo = False  # the change is made already (a stroke; a rebuilt history)
+
+    def redo(self) -> None:
+        if self._skip_redo:
+            self._skip_redo = False
+            return
+        self.apply()
+
+    def undo(self) -> None:
+        self.revert()
+
+    def apply(self) -> None:
+        raise NotImplementedError
+
+    def revert(self) -> None:
+        raise NotImplementedError
+
+    def clone(self) -> Command:
+        raise NotImplementedError
+
+    @property
+    def memory_bytes(self) -> int:
+        return 0
+
+
+class SetValue(Command):
+    """One attribute of a model from `old` to `new` (blade parameters, density, slices, …)."""
+
+    def __init__(self, text: str, model, attribute: str, old, new, merge_id: int = -1) -> None:
+        super().__init__(text)
+        self.model, self.attribute, self.old, self.new = model, attribute, old, new
+        self.merge_id = merge_id
+
+    def apply(self) -> None:
+        setattr(self.model, self.attribute, self.new)
+
+    def revert(self) -> None:
+        setattr(self.model, self.attribute, self.old)
+
+    def id(self) -> int:
+        return self.merge_id
+
+    def mergeWith(self, other) -> bool:  # a slider drag is one undo step
+        if other.id() != self.merge_id or other.model is not self.model:
+            return False
+        self.new = other.new
+        return True
+
+    def clone(self) -> SetValue:
+        return SetValue(self.text(), self.model, self.attribute, self.old, self.new, self.merge_id)
+
+
+def set_params(design: PatchDesign, new: PatchParams) -> SetValue:
+    return SetValue("change blades", design, "params", design.params, new)
+
+
+def set_density(design: PatchDesign, new: float) -> SetValue:
+    return SetValue("change density", design, "density", design.density, new, merge_id=1)
+
+
+def set_slices(design: PatchDesign, new: SliceParams) -> SetValue:
+    return SetValue("change slices", design, "slices", design.slices, new)
+
+
+class PaintStroke(Command):
+    """One finished brush stroke: its texels before and after, in the tiles it touched."""
+
+    def __init__(self, stroke: Stroke, text: str) -> None:
+        super().__init__(text)
+        self.stroke = stroke
+        self._skip_redo = True  # painted while the mouse moved
+
+    def apply(self) -> None:
+        self.stroke.redo()
+
+    def revert(self) -> None:
+        self.stroke.undo()
+
+    def clone(self) -> PaintStroke:
+        return PaintStroke(self.stroke, self.text())
+
+    @property
+    def memory_bytes(self) -> int:
+        return self.stroke.memory_bytes
+
+
+def history_bytes(stack: QUndoStack) -> int:
+    return sum(getattr(stack.command(i), "memory_bytes", 0) for i in range(stack.count()))
+
+
+def push(stack: QUndoStack, command: Command, cap: int = MEMORY_CAP) -> int:
+    """Push a command; if the history then keeps more than `cap` bytes, forget its oldest
+    steps (the newest step always stays). Returns how many steps were forgotten."""
+    stack.push(command)
+    if history_bytes(stack) <= cap or stack.index() != stack.count():
+        return 0
+    commands = [stack.command(i) for i in range(stack.count())]
+    keep, total = 0, 0
+    for cmd in reversed(commands):
+        total += getattr(cmd, "memory_bytes", 0)
+        if keep and total > cap:
+            break
+        keep += 1
+    dropped = len(commands) - keep
+    clean = stack.cleanIndex()
+    clones = [cmd.clone() for cmd in commands[dropped:]]
+    stack.clear()
+    for i, cmd in enumerate(clones):
+        if clean - dropped == i:
+            stack.setClean()
+        cmd._skip_redo = True  # the state already holds every kept change
+        stack.push(cmd)
+    if clean - dropped == len(clones):
+        stack.setClean()
+    elif clean < dropped:
+        stack.resetClean()  # the saved state is no longer reachable by undo
+    return dropped

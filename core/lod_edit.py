@@ -1,0 +1,101 @@
+"""Editing LOD levels (the designer's LOD zone editor): the levels of every grass type as a
+model that announces changes, and edits that give a valid LodConfig or raise ValueError with a
+message a person can act on (LodConfig checks the thesis's overlap rules)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from psygnal import Signal
+
+from core.lod import LodConfig, LodLevel
+
+
+class LodDesign:
+    """LOD levels per grass type (0: the patch being designed). `changed(index, config)`."""
+
+    changed = Signal(int, object)
+
+    def __init__(self, names: list[str], configs: list[LodConfig]) -> None:
+        if len(names) != len(configs):
+            raise ValueError("one name per grass type")
+        self.names = list(names)
+        self._configs = list(configs)
+
+    def __len__(self) -> int:
+        return len(self._configs)
+
+    def __getitem__(self, index: int) -> LodConfig:
+        return self._configs[index]
+
+    def set(self, index: int, config: LodConfig) -> None:
+        if not isinstance(config, LodConfig):
+            raise TypeError("a grass type's LOD levels must be a LodConfig")
+        if config != self._configs[index]:
+            self._configs[index] = config
+            self.changed.emit(index, config)
+
+
+def with_levels(config: LodConfig, levels: list[LodLevel]) -> LodConfig:
+    return dataclasses.replace(config, levels=tuple(levels))
+
+
+def set_field(config: LodConfig, index: int, name: str, value) -> LodConfig:
+    """One field of one level (representation, begin, end, slices, macro)."""
+    levels = list(config.levels)
+    level = levels[index]
+    changes = {name: value}
+    if name == "representation" and value == "geometry":
+        changes["macro"] = 1  # geometry draws single cells (thesis 6.2)
+    levels[index] = dataclasses.replace(level, **changes)
+    return with_levels(config, levels)
+
+
+def append_level(config: LodConfig) -> LodConfig:
+    """A new last level beyond the current last one, which now ends where the new one has
+    fully taken over; the new level draws what the last one drew."""
+    levels = list(config.levels)
+    last = levels[-1]
+    start = max(last.begin, levels[-2].end if len(levels) > 1 else 0.0)  # type: ignore[type-var]
+    span = max(0.5 * start, 4.0)
+    begin = start + span
+    levels[-1] = dataclasses.replace(last, end=begin + 0.5 * span)
+    levels.append(dataclasses.replace(last, begin=begin, end=None))
+    return with_levels(config, levels)
+
+
+def remove_level(config: LodConfig, index: int) -> LodConfig:
+    """Drop a level; its neighbours close the gap (the new first level begins at 0, the new
+    last runs to the horizon, the level before reaches to the one after)."""
+    levels = list(config.levels)
+    if len(levels) == 1:
+        raise ValueError("the only LOD level cannot be removed")
+    del levels[index]
+    if index == 0:
+        levels[0] = dataclasses.replace(levels[0], begin=0.0)
+    elif index == len(levels):
+        levels[-1] = dataclasses.replace(levels[-1], end=None)
+    else:
+        before, after = levels[index - 1], levels[index]
+        if before.end is not None and before.end < after.begin:
+            levels[index - 1] = dataclasses.replace(before, end=after.begin)
+    return with_levels(config, levels)
+
+
+def move_level(config: LodConfig, index: int, step: int) -> LodConfig:
+    """Swap what two neighbouring levels draw (representation, slices, macro-cells); the
+    distance ranges stay where they are."""
+    other = index + step
+    levels = list(config.levels)
+    if not 0 <= other < len(levels):
+        raise ValueError("a level cannot move past the first or last place")
+    a, b = levels[index], levels[other]
+
+    def drawn(src: LodLevel, dst: LodLevel) -> LodLevel:
+        macro = 1 if src.representation == "geometry" else src.macro
+        return dataclasses.replace(
+            dst, representation=src.representation, slices=src.slices, macro=macro
+        )
+
+    levels[index], levels[other] = drawn(b, a), drawn(a, b)
+    return with_levels(config, levels)

@@ -1,0 +1,50 @@
+"""LOD zone editor edits: every result is a valid LodConfig, or a message says why not."""
+
+import pytest
+
+from core.lod import LodConfig
+from core.lod_edit import LodDesign, append_level, move_level, remove_level, set_field
+
+THREE = LodConfig.zones(geometry_end=4.0, volume_end=12.0, transition=2.0)
+
+
+def test_append_and_remove_keep_the_configuration_valid():
+    four = append_level(THREE)
+    assert len(four.levels) == 4 and four.levels[-1].end is None
+    assert four.levels[2].end is not None and four.levels[3].begin < four.levels[2].end
+    assert remove_level(four, 3) == THREE.__class__(
+        (*THREE.levels[:2], four.levels[2].__class__("image", THREE.levels[2].begin, None)),
+        THREE.epsilon,
+    )
+    first_gone = remove_level(THREE, 0)
+    assert first_gone.levels[0].representation == "volume" and first_gone.levels[0].begin == 0
+    middle_gone = remove_level(THREE, 1)
+    assert [lv.representation for lv in middle_gone.levels] == ["geometry", "image"]
+    with pytest.raises(ValueError, match="only LOD level"):
+        remove_level(LodConfig.zones(None, None), 0)
+
+
+def test_move_swaps_what_levels_draw_not_where():
+    moved = move_level(set_field(THREE, 1, "macro", 4), 1, -1)
+    assert [lv.representation for lv in moved.levels] == ["volume", "geometry", "image"]
+    assert [lv.begin for lv in moved.levels] == [lv.begin for lv in THREE.levels]
+    assert moved.levels[1].macro == 1  # geometry draws single cells
+    assert moved.levels[0].macro == 4
+    with pytest.raises(ValueError):
+        move_level(THREE, 0, -1)
+
+
+def test_an_impossible_end_is_refused_with_the_rule():
+    with pytest.raises(ValueError, match="increasing"):
+        set_field(THREE, 0, "end", 20.0)  # geometry past the volume level's end
+    assert set_field(THREE, 1, "end", 20.0).levels[1].end == 20.0
+
+
+def test_the_model_announces_only_real_changes():
+    model = LodDesign(["turf"], [THREE])
+    seen = []
+    model.changed.connect(lambda i, c: seen.append((i, c)))
+    model.set(0, THREE)
+    new = set_field(THREE, 1, "end", 20.0)
+    model.set(0, new)
+    assert seen == [(0, new)] and model[0] == new
