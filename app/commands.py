@@ -136,3 +136,22 @@ def push(stack: QUndoStack, command: Command, cap: int = MEMORY_CAP) -> int:
     elif clean < dropped:
         stack.resetClean()  # the saved state is no longer reachable by undo
     return dropped
+
+
+class SetLod(Command):
+    """The LOD levels of one grass type (the LOD zone editor)."""
+
+    def __init__(self, model, index: int, new) -> None:
+        super().__init__(f"edit LOD levels of {model.names[index]}")
+        self.model, self.index, self.old, self.new = model, index, model[index], new
+
+    def apply(self) -> None:
+        self.model.set(self.index, self.new)
+
+    def revert(self) -> None:
+        self.model.set(self.index, self.old)
+
+    def clone(self) -> SetLod:
+        twin = SetLod(self.model, self.index, self.new)
+        twin.old = self.old
+        return twin

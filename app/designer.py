@@ -2,18 +2,30 @@
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 
 from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoStack
-from PySide6.QtWidgets import QApplication, QDockWidget, QFileDialog, QLabel, QMainWindow
+from PySide6.QtWidgets import (
+    QApplication,
+    QDockWidget,
+    QFileDialog,
+    QLabel,
+    QMainWindow,
+    QUndoView,
+)
 
 from app import commands
+from app.painting import PaintController
 from app.projects import ProjectActions
 from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
 from core.design import PatchDesign
+from core.lod_edit import LodDesign
 from core.params import PatchParams, SliceParams
 from core.patch import GrassPatch, generate_patch
+from widgets.lod_panel import LodPanel
+from widgets.paint_panel import PaintPanel
 from widgets.patch_panel import PatchPanel
 from widgets.viewport import GrassViewport
 
@@ -83,6 +95,9 @@ class DesignerWindow(QMainWindow):
         self.patch: GrassPatch | None = None
 
         self.viewport = GrassViewport(scene.camera())
+        self.lods = lod_design(scene)
+        self.paint_panel = PaintPanel(self.lods.names)
+        self.painter = PaintController(self)
         self._show_scene(scene)
         self.viewport.set_density(self.design.density)
         self.viewport.set_slice_params(self.design.slices)
@@ -90,11 +105,17 @@ class DesignerWindow(QMainWindow):
         self.setCentralWidget(self.viewport)
 
         self.panel = PatchPanel(self.design)
-        dock = QDockWidget("Patch", self)
-        dock.setObjectName("patch-dock")
-        dock.setWidget(self.panel)
+        dock = self._dock("Patch", self.panel, "patch-dock")
         dock.setMinimumWidth(330)
-        self.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, dock)
+        self.lod_panel = LodPanel(self.lods)
+        self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock")
+        self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock")
+        self.history = QUndoView(self.undo_stack)
+        self.history.setEmptyLabel("(opened)")
+        self.history_dock = self._dock("History", self.history, "history-dock")
+        self.tabifyDockWidget(dock, self.paint_dock)
+        self.tabifyDockWidget(self.paint_dock, self.lod_dock)
+        dock.raise_()
 
         self.status = QLabel("generating patch …")
         self.statusBar().addPermanentWidget(self.status, 1)
@@ -109,9 +130,34 @@ class DesignerWindow(QMainWindow):
         self.builder.ready.connect(self._on_patch_ready)
         self.builder.busy.connect(self._on_busy)
         self.viewport.frame_rendered.connect(self._on_frame)
+        self.viewport.paint_pressed.connect(self.painter.press)
+        self.viewport.paint_moved.connect(self._paint_move)
+        self.viewport.paint_released.connect(self.painter.release)
+        self.paint_panel.brush_changed.connect(
+            lambda: self.viewport.set_brush_size(self.paint_panel.size_box.value())
+        )
+        self.painter.heights_changed.connect(self._rebuild_terrain)
+        self.lod_panel.lod_edited.connect(
+            lambda i, config: self.push(commands.SetLod(self.lods, i, config))
+        )
+        self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
+        self.lods.changed.connect(self.viewport.set_layer_lod)
         self._build_menus(dock)
         self.resize(1200, 760)
         self.builder.request(self.design.params)
+
+    def _dock(self, title: str, widget, name: str) -> QDockWidget:
+        dock = QDockWidget(title, self)
+        dock.setObjectName(name)
+        dock.setWidget(widget)
+        self.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, dock)
+        return dock
+
+    def _action(self, text: str, key: str, slot, checkable: bool = False) -> QAction:
+        act = QAction(text, self, shortcut=QKeySequence(key), checkable=checkable)
+        (act.toggled if checkable else act.triggered).connect(slot)
+        self.addAction(act)  # works while the menu bar is hidden, e.g. in a test
+        return act
 
     def _build_menus(self, dock: QDockWidget) -> None:
         file_menu = self.menuBar().addMenu("&File")
@@ -164,8 +210,28 @@ class DesignerWindow(QMainWindow):
             lambda on: self.viewport.set_view("techniques" if on else "shaded")
         )
         view.addAction(self.techniques_action)
+        self.zones_action = self._action(
+            "LOD &zones on the terrain", "Z", self.lod_panel.zones_box.setChecked, checkable=True
+        )
+        self.lod_panel.zones_box.toggled.connect(self.zones_action.setChecked)
+        view.addAction(self.zones_action)
         view.addSeparator()
-        view.addAction(dock.toggleViewAction())
+        for d in (dock, self.paint_dock, self.lod_dock, self.history_dock):
+            view.addAction(d.toggleViewAction())
+        paint = self.menuBar().addMenu("&Paint")
+        self.paint_action = self._action("&Paint in the viewport", "B", self._set_painting, True)
+        paint.addAction(self.paint_action)
+        paint.addSeparator()
+        panel = self.paint_panel
+        paint.addActions(
+            [
+                self._action("&Bigger brush", "]", lambda: panel.scale_size(1.25)),
+                self._action("&Smaller brush", "[", lambda: panel.scale_size(0.8)),
+                self._action("S&tronger", "=", lambda: panel.add_strength(0.1)),
+                self._action("&Weaker", "-", lambda: panel.add_strength(-0.1)),
+                self._action("&Eyedropper", "I", self.painter.start_eyedropper),
+            ]
+        )
 
     def _fill_camera_menu(self) -> None:
         self.camera_menu.clear()
@@ -187,10 +253,26 @@ class DesignerWindow(QMainWindow):
             self.recent_menu.addAction(act)
         self.recent_menu.setEnabled(bool(self.projects.recent()))
 
+    def _set_painting(self, on: bool) -> None:
+        self.viewport.set_tool("paint" if on else "camera")
+        self.viewport.set_brush_size(self.paint_panel.size_box.value())
+        if on:
+            self.paint_dock.show()
+            self.paint_dock.raise_()
+
+    def _paint_move(self, x: float, y: float) -> None:
+        self.painter.move(x, y)
+
+    def _rebuild_terrain(self) -> None:
+        """The terrain's bounding volumes and ground ranges follow a changed height map."""
+        scene = dataclasses.replace(self.scene, stack=self.maps.stack)
+        self.viewport.set_terrain(scene.terrain())
+
     def _show_scene(self, scene: Scene) -> None:
         """Hand a scene's terrain, maps, props, LOD levels and fog to the viewport."""
         self.viewport.set_terrain(scene.terrain())
         self.maps = scene.design_maps()
+        self.painter.set_maps(self.maps)
         self.viewport.set_design_maps(self.maps)
         self.viewport.set_props(scene.prop_boxes())
         self.viewport.set_lod(scene.lod)
@@ -207,6 +289,10 @@ class DesignerWindow(QMainWindow):
             self.scene = scene
             self.setWindowTitle(f"Sward — {scene.name}[*]")
             self.undo_stack.clear()
+            self.lods = lod_design(scene)
+            self.lods.changed.connect(self.viewport.set_layer_lod)
+            self.lod_panel.set_model(self.lods)
+            self.paint_panel.set_grass_names(self.lods.names)
             self._show_scene(scene)
             self.viewport.set_camera(scene.camera())
             self._fill_camera_menu()
@@ -253,6 +339,7 @@ class DesignerWindow(QMainWindow):
         self._on_frame(self.viewport.last_stats)
 
     def _on_frame(self, stats) -> None:
+        self.lod_panel.show_counts(stats)
         self.status.setText(
             self._converting + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
             f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · frame {stats.t_a_ms:.0f} ms "
@@ -273,6 +360,12 @@ class DesignerWindow(QMainWindow):
         self.builder.wait()
         self.viewport.release_gl()
         super().closeEvent(event)
+
+
+def lod_design(scene: Scene) -> LodDesign:
+    """The LOD levels of the scene's grass types, as the LOD zone editor edits them."""
+    names = ["main grass", *(kind.name for kind in scene.grass)]
+    return LodDesign(names, [scene.lod, *(kind.lod for kind in scene.grass)])
 
 
 def run_designer(scene_name: str = DEFAULT_SCENE) -> int:

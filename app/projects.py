@@ -31,6 +31,10 @@ class ProjectActions(QObject):
             density=w.design.density,
             slices=w.design.slices,
             stack=w.maps.stack,
+            lod=w.lods[0],
+            grass=tuple(
+                dataclasses.replace(kind, lod=w.lods[i + 1]) for i, kind in enumerate(w.scene.grass)
+            ),
         )
 
     # -- actions -----------------------------------------------------------------------------

@@ -96,3 +96,15 @@ def ground_circle(terrain: Terrain, x: float, z: float, radius: float, points: i
     cz = z + radius * np.sin(a)
     y = ground_height(terrain, cx, cz) + 0.02
     return np.stack([cx, y, cz], axis=1).astype(np.float32)
+
+
+def zone_rings(terrain: Terrain, eye, levels, points: int = 160) -> list[tuple[np.ndarray, str]]:
+    """The LOD zone boundaries on the ground around the eye: a circle where each level begins
+    and ends (the LOD distance is horizontal, core/lod.py), with the level's representation."""
+    rings = []
+    for level in levels:
+        for d in (level.begin, level.end):
+            if d is not None and d > 0:
+                ring = ground_circle(terrain, float(eye[0]), float(eye[2]), float(d), points)
+                rings.append((ring, level.representation))
+    return rings

@@ -20,6 +20,7 @@ from core.design_maps import DesignMaps
 from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
+from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, zone_rings
 from core.stats import FrameStats
 from core.terrain import Terrain
 from render import context
@@ -35,9 +36,22 @@ def gl_format() -> QSurfaceFormat:
     return fmt
 
 
+# LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
+ZONE_COLORS = {
+    "geometry": (1.0, 0.25, 0.2, 0.95),
+    "volume": (1.0, 0.85, 0.1, 0.95),
+    "image": (0.3, 0.5, 1.0, 0.95),
+}
+BRUSH_COLOR = (1.0, 1.0, 1.0, 0.9)
+
+
 class GrassViewport(QOpenGLWidget):
     frame_rendered = Signal(object)  # FrameStats
     camera_changed = Signal()
+    # painting (tool "paint"): map texel (column, row) under the cursor, keyboard modifiers
+    paint_pressed = Signal(float, float, object)
+    paint_moved = Signal(float, float)
+    paint_released = Signal()
 
     FLY_KEYS: ClassVar[frozenset] = frozenset(
         {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
@@ -72,6 +86,15 @@ class GrassViewport(QOpenGLWidget):
         self._fly_timer.setInterval(30)
         self._fly_timer.timeout.connect(self._fly_step)
         self.last_stats = FrameStats()
+        self.tool = "camera"  # camera | paint
+        self.brush_size = 24.0  # texels, for the outline
+        self.show_zones = False  # LOD zone rings on the ground
+        self._painting = False
+        self._hover: tuple[float, float] | None = None  # world x, z under the cursor
+        self._settle = QTimer(self)  # full-quality frame once the cursor rests
+        self._settle.setSingleShot(True)
+        self._settle.setInterval(300)
+        self._settle.timeout.connect(self.update)
 
     # -- scene state (may arrive before the GL context exists) ------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
@@ -100,6 +123,19 @@ class GrassViewport(QOpenGLWidget):
         self._lod = lod
         if self.pipeline is not None:
             self.pipeline.set_lod(lod)
+        self.slices.schedule()  # a new volume level may need slices of another count
+        self.update()
+
+    def set_layer_lod(self, index: int, lod: LodConfig) -> None:
+        """The LOD levels of one grass type (0: the designed patch)."""
+        if index == 0:
+            self.set_lod(lod)
+            return
+        patch, _, channel = self._grass_types[index - 1]
+        self._grass_types[index - 1] = (patch, lod, channel)
+        if self.pipeline is not None:
+            self.pipeline.set_layer_lod(index, lod)
+        self.slices.schedule()
         self.update()
 
     def set_slice_params(self, params: SliceParams) -> None:
@@ -115,7 +151,7 @@ class GrassViewport(QOpenGLWidget):
 
     def set_grass_types(self, types: list) -> None:
         """Further grass types: (patch, LOD levels, density channel) each."""
-        self._grass_types = types
+        self._grass_types = list(types)
         self._upload(lambda pipeline: pipeline.set_grass_types(types))
         self.slices.schedule()
 
@@ -161,6 +197,52 @@ class GrassViewport(QOpenGLWidget):
         self.camera_changed.emit()
         self.update()
 
+    # -- painting ----------------------------------------------------------------------------
+    def set_tool(self, tool: str) -> None:
+        """camera: left drag orbits; paint: left drag paints, right drag orbits, middle pans."""
+        self.tool = tool
+        self.setMouseTracking(tool == "paint")
+        self.setCursor(
+            Qt.CursorShape.CrossCursor if tool == "paint" else Qt.CursorShape.ArrowCursor
+        )
+        if tool != "paint":
+            self._hover = None
+        self._update_outline()
+
+    def set_brush_size(self, texels: float) -> None:
+        self.brush_size = texels
+        self._update_outline()
+
+    def set_show_zones(self, on: bool) -> None:
+        self.show_zones = on
+        if not on and self.pipeline is not None:
+            self.pipeline.overlay.set_lines("zones", [])
+        self.update()
+
+    def ground_at(self, x: float, y: float) -> np.ndarray | None:
+        """The world point of the ground under widget position (x, y), or None."""
+        if self._terrain is None:
+            return None
+        ray = pixel_ray(self.camera, x, y, max(self.width(), 1), max(self.height(), 1))
+        return ground_hit(self._terrain, *ray)
+
+    def texel_at(self, x: float, y: float) -> tuple[float, float] | None:
+        """The design-map texel (column, row) under widget position (x, y), or None."""
+        hit = self.ground_at(x, y)
+        if hit is None or self._maps is None:
+            return None
+        self._hover = (float(hit[0]), float(hit[2]))
+        return world_to_texel(self._terrain, self._maps.size, self._hover[0], self._hover[1])
+
+    def _update_outline(self) -> None:
+        lines = []
+        if self.tool == "paint" and self._hover is not None and self._maps is not None:
+            radius = 0.5 * self.brush_size * self._terrain.columns / self._maps.size[0]
+            lines.append((ground_circle(self._terrain, *self._hover, radius), BRUSH_COLOR))
+        if self.pipeline is not None:
+            self.pipeline.overlay.set_lines("brush", lines)
+        self.update()
+
     # -- GL ----------------------------------------------------------------------------------
     def initializeGL(self) -> None:
         self.ctx = context.wrap_current()
@@ -194,28 +276,58 @@ class GrassViewport(QOpenGLWidget):
         ratio = self.devicePixelRatio()
         size = (max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio)))
         out = self.ctx.detect_framebuffer(self.defaultFramebufferObject())
-        moving = self._drag is not None or self._fly_timer.isActive()
+        if self.show_zones and self._terrain is not None:
+            rings = zone_rings(self._terrain, self.camera.eye, self.pipeline.lod.levels)
+            self.pipeline.overlay.set_lines(
+                "zones", [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
+            )
+        moving = (
+            self._drag is not None
+            or self._painting
+            or self._fly_timer.isActive()
+            or self._settle.isActive()
+        )
         stats = self.pipeline.render(self.camera, out, size, measure=True, preview=moving)
         self.last_stats = stats
         self.frame_rendered.emit(stats)
 
     # -- mouse and keys ----------------------------------------------------------------------
     def mousePressEvent(self, event) -> None:
+        if self.tool == "paint" and event.button() == Qt.MouseButton.LeftButton:
+            pos = event.position()
+            texel = self.texel_at(pos.x(), pos.y())
+            if texel is not None:
+                self._painting = True
+                self.paint_pressed.emit(texel[0], texel[1], event.modifiers())
+                self._update_outline()
+            return
         self._drag = event.position().toPoint()
         self._button = event.button()
 
     def mouseReleaseEvent(self, event) -> None:
+        if self._painting:
+            self._painting = False
+            self.paint_released.emit()
         self._drag = None
         self._button = Qt.MouseButton.NoButton
         self.update()  # the full-quality frame after a preview drag
 
     def mouseMoveEvent(self, event) -> None:
+        if self.tool == "paint" and self._drag is None:
+            pos = event.position()
+            texel = self.texel_at(pos.x(), pos.y())
+            if texel is not None and self._painting:
+                self.paint_moved.emit(texel[0], texel[1])
+            self._settle.start()
+            self._update_outline()
+            return
         if self._drag is None:
             return
         pos = event.position().toPoint()
         dx, dy = pos.x() - self._drag.x(), pos.y() - self._drag.y()
         self._drag = pos
-        if self._button == Qt.MouseButton.LeftButton:
+        orbit = Qt.MouseButton.RightButton if self.tool == "paint" else Qt.MouseButton.LeftButton
+        if self._button == orbit:
             self.camera.orbit(-0.4 * dx, 0.3 * dy)
         else:
             scale = 1.0 / max(self.height(), 1)

@@ -1,0 +1,182 @@
+"""The brush panel: which map is painted (density per grass type, colour, ambient, diffuse,
+height), the mode and the brush (size, strength, target value, falloff, spacing). It shows the
+brush and reports edits; strokes are made by the designer's paint controller."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Signal
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import (
+    QColorDialog,
+    QComboBox,
+    QDoubleSpinBox,
+    QFormLayout,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSpinBox,
+    QVBoxLayout,
+    QWidget,
+)
+
+from core.brush import FALLOFFS, MODES, Brush
+
+SCALAR_LAYERS = {  # map -> (value label, maximum)
+    "density": ("Density", 1.0),
+    "ambient": ("Ambient light", 2.0),
+    "diffuse": ("Diffuse light", 2.0),
+    "height": ("Height", 1.0),
+}
+
+
+class PaintPanel(QWidget):
+    brush_changed = Signal()
+    import_requested = Signal()
+    export_requested = Signal()
+
+    def __init__(self, grass_names: list[str], parent=None) -> None:
+        super().__init__(parent)
+        form = QFormLayout()
+        self.layer_box = QComboBox()
+        self.set_grass_names(grass_names)
+        form.addRow("Map", self.layer_box)
+        self.mode_box = QComboBox()
+        self.mode_box.addItems(MODES)
+        self.mode_box.setToolTip("Ctrl while painting: erase · Shift: smooth")
+        form.addRow("Mode", self.mode_box)
+        self.size_box = QSpinBox(minimum=1, maximum=1024, value=24, suffix=" texels")
+        self.size_box.setToolTip("[ smaller · ] bigger")
+        form.addRow("Size", self.size_box)
+        self.strength_box = QDoubleSpinBox(minimum=0.0, maximum=1.0, singleStep=0.1, value=0.8)
+        self.strength_box.setToolTip("- weaker · = stronger")
+        form.addRow("Strength", self.strength_box)
+        self.value_box = QDoubleSpinBox(minimum=0.0, maximum=1.0, singleStep=0.05, value=0.0)
+        self.value_label = QLabel("Density")
+        form.addRow(self.value_label, self.value_box)
+        self.color = QColor(235, 200, 40)
+        self.color_button = QPushButton()
+        self.color_button.clicked.connect(self._choose_color)
+        self.alpha_box = QDoubleSpinBox(minimum=0.0, maximum=1.0, singleStep=0.05, value=0.9)
+        self.alpha_box.setToolTip("how strongly the colour replaces the blades' own (eq. 6.8)")
+        colour_row = QHBoxLayout()
+        colour_row.addWidget(self.color_button, 1)
+        colour_row.addWidget(QLabel("weight"))
+        colour_row.addWidget(self.alpha_box)
+        self.color_row = QWidget()
+        self.color_row.setLayout(colour_row)
+        colour_row.setContentsMargins(0, 0, 0, 0)
+        form.addRow("Colour", self.color_row)
+        self.form = form
+        self.falloff_box = QComboBox()
+        self.falloff_box.addItems(FALLOFFS)
+        form.addRow("Falloff", self.falloff_box)
+        self.spacing_box = QDoubleSpinBox(minimum=0.05, maximum=4.0, singleStep=0.05, value=0.25)
+        self.spacing_box.setToolTip("distance between dabs, in brush sizes")
+        form.addRow("Spacing", self.spacing_box)
+        buttons = QHBoxLayout()
+        self.import_button = QPushButton("Import map…")
+        self.export_button = QPushButton("Export map…")
+        self.import_button.clicked.connect(self.import_requested)
+        self.export_button.clicked.connect(self.export_requested)
+        buttons.addWidget(self.import_button)
+        buttons.addWidget(self.export_button)
+        self.hint = QLabel(
+            "B: paint in the viewport (left drag paints, right drag orbits, middle pans) · "
+            "I: pick a value · Ctrl: erase · Shift: smooth"
+        )
+        self.hint.setWordWrap(True)
+        self.message = QLabel()
+        self.message.setWordWrap(True)
+        layout = QVBoxLayout(self)
+        layout.addLayout(form)
+        layout.addLayout(buttons)
+        layout.addWidget(self.hint)
+        layout.addWidget(self.message)
+        layout.addStretch(1)
+        for box in (self.layer_box, self.mode_box, self.falloff_box):
+            box.currentIndexChanged.connect(self._changed)
+        for box in (
+            self.size_box,
+            self.strength_box,
+            self.value_box,
+            self.alpha_box,
+            self.spacing_box,
+        ):
+            box.valueChanged.connect(self._changed)
+        self._changed()
+
+    def set_grass_names(self, names: list[str]) -> None:
+        self.layer_box.blockSignals(True)
+        self.layer_box.clear()
+        for i, name in enumerate(names):
+            self.layer_box.addItem(f"density — {name}", ("density", i))
+        self.layer_box.addItem("colour (RGB + weight)", ("color", None))
+        self.layer_box.addItem("ambient light", ("ambient", None))
+        self.layer_box.addItem("diffuse light", ("diffuse", None))
+        self.layer_box.addItem("height", ("height", None))
+        self.layer_box.blockSignals(False)
+
+    # -- what the brush is -------------------------------------------------------------------
+    @property
+    def target(self) -> tuple[str, int | None]:
+        """(map name, density channel or None)."""
+        return self.layer_box.currentData()
+
+    def value(self) -> tuple[float, ...]:
+        layer, _ = self.target
+        if layer == "color":
+            return (
+                self.color.redF(),
+                self.color.greenF(),
+                self.color.blueF(),
+                self.alpha_box.value(),
+            )
+        v = self.value_box.value()
+        return (v, v, v) if layer in ("ambient", "diffuse") else (v,)
+
+    def brush(self, mode: str | None = None) -> Brush:
+        return Brush(
+            size=float(self.size_box.value()),
+            strength=self.strength_box.value(),
+            value=self.value(),
+            falloff=self.falloff_box.currentText(),
+            spacing=self.spacing_box.value(),
+            mode=mode or self.mode_box.currentText(),
+        )
+
+    def set_value(self, values) -> None:
+        """The eyedropper's pick: the map's value under the cursor becomes the target."""
+        layer, _ = self.target
+        if layer == "color":
+            r, g, b, a = (float(v) for v in values[:4])
+            self.color = QColor.fromRgbF(min(r, 1.0), min(g, 1.0), min(b, 1.0))
+            self.alpha_box.setValue(a)
+        else:
+            self.value_box.setValue(float(values[0]))
+        self._changed()
+
+    # -- edits -------------------------------------------------------------------------------
+    def scale_size(self, factor: float) -> None:
+        self.size_box.setValue(max(1, round(self.size_box.value() * factor)))
+
+    def add_strength(self, delta: float) -> None:
+        self.strength_box.setValue(round(self.strength_box.value() + delta, 2))
+
+    def _choose_color(self) -> None:
+        chosen = QColorDialog.getColor(self.color, self, "Brush colour")
+        if chosen.isValid():
+            self.color = chosen
+            self._changed()
+
+    def _changed(self, *_) -> None:
+        layer, _ = self.target
+        is_color = layer == "color"
+        self.form.setRowVisible(self.color_row, is_color)
+        self.form.setRowVisible(self.value_box, not is_color)
+        if not is_color:
+            label, high = SCALAR_LAYERS[layer]
+            self.value_label.setText(label)
+            self.value_box.setMaximum(high)
+        self.color_button.setStyleSheet(f"background: {self.color.name()}")
+        self.color_button.setText(self.color.name())
+        self.brush_changed.emit()
