@@ -83,7 +83,11 @@ def parser() -> argparse.ArgumentParser:
     pr.add_argument(
         "--only", choices=("geometry", "volume", "image"), help="one representation for all"
     )
-    pr.add_argument("--out", type=Path, help="JSON file for every frame and the summaries")
+    pr.add_argument(
+        "--out",
+        type=Path,
+        help="JSON file for every frame and the summaries, or .csv: a row per frame",
+    )
 
     n = sub.add_parser("new", help="write a project file started from a built-in scene")
     n.add_argument("file", type=Path, help="project file to write (.sward)")

@@ -13,6 +13,7 @@ from PySide6.QtWidgets import (
     QFileDialog,
     QLabel,
     QMainWindow,
+    QMessageBox,
     QUndoView,
 )
 
@@ -27,6 +28,7 @@ from core.patch import GrassPatch, generate_patch
 from widgets.lod_panel import LodPanel
 from widgets.paint_panel import PaintPanel
 from widgets.patch_panel import PatchPanel
+from widgets.profile_view import ProfileOverlay, ProfilePanel
 from widgets.viewport import GrassViewport
 
 
@@ -102,6 +104,7 @@ class DesignerWindow(QMainWindow):
         self.viewport.set_density(self.design.density)
         self.viewport.set_slice_params(self.design.slices)
         self._converting = ""
+        self._last_frame = None
         self.setCentralWidget(self.viewport)
 
         self.panel = PatchPanel(self.design)
@@ -110,11 +113,18 @@ class DesignerWindow(QMainWindow):
         self.lod_panel = LodPanel(self.lods)
         self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock")
         self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock")
+        self.overlay = ProfileOverlay(self.viewport)
+        self.profile_panel = ProfilePanel()
+        self.profile_dock = self._dock("Timings", self.profile_panel, "profile-dock")
+        self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
+        self.profile_panel.recorded.connect(self._save_recording)
         self.history = QUndoView(self.undo_stack)
         self.history.setEmptyLabel("(opened)")
         self.history_dock = self._dock("History", self.history, "history-dock")
         self.tabifyDockWidget(dock, self.paint_dock)
         self.tabifyDockWidget(self.paint_dock, self.lod_dock)
+        self.tabifyDockWidget(self.history_dock, self.profile_dock)
+        self.history_dock.raise_()
         dock.raise_()
 
         self.status = QLabel("generating patch …")
@@ -215,8 +225,12 @@ class DesignerWindow(QMainWindow):
         )
         self.lod_panel.zones_box.toggled.connect(self.zones_action.setChecked)
         view.addAction(self.zones_action)
+        self.timings_action = self._action(
+            "T&imings overlay", "P", self.overlay.setVisible, checkable=True
+        )
+        view.addAction(self.timings_action)
         view.addSeparator()
-        for d in (dock, self.paint_dock, self.lod_dock, self.history_dock):
+        for d in (dock, self.paint_dock, self.lod_dock, self.history_dock, self.profile_dock):
             view.addAction(d.toggleViewAction())
         paint = self.menuBar().addMenu("&Paint")
         self.paint_action = self._action("&Paint in the viewport", "B", self._set_painting, True)
@@ -340,6 +354,10 @@ class DesignerWindow(QMainWindow):
 
     def _on_frame(self, stats) -> None:
         self.lod_panel.show_counts(stats)
+        if stats is not self._last_frame:  # (also called for conversion progress)
+            self._last_frame = stats
+            self.overlay.add(stats)
+            self.profile_panel.add(stats)
         self.status.setText(
             self._converting + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
             f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · frame {stats.t_a_ms:.0f} ms "
@@ -352,6 +370,22 @@ class DesignerWindow(QMainWindow):
         if path:
             if not self.viewport.grabFramebuffer().save(path, "PNG"):
                 self.statusBar().showMessage(f"could not write {path}", 5000)
+
+    def _save_recording(self, frames: list) -> None:
+        if not frames:
+            self.statusBar().showMessage("nothing recorded: no frame was drawn", 5000)
+            return
+        path, _ = QFileDialog.getSaveFileName(
+            self, "Save recorded frames", "timings.csv", "CSV (*.csv);;JSON (*.json)"
+        )
+        if not path:
+            return
+        try:
+            text = self.profile_panel.save(path, frames, scene=self.scene.name)
+        except OSError as exc:
+            QMessageBox.warning(self, "Sward", f"cannot write {path}: {exc.strerror or exc}")
+            return
+        self.statusBar().showMessage(text, 5000)
 
     def closeEvent(self, event) -> None:
         if not self.projects.confirm_discard():

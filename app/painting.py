@@ -89,7 +89,8 @@ class PaintController(QObject):
         w, h = self.maps.size
         col, row = int(np.clip(x, 0, w - 1)), int(np.clip(y, 0, h - 1))
         values = self.maps.layer(layer)[row, col]
-        values = values[[channel]] if channel is not None else values
+        if channel is not None:
+            values = values[[max(channel, 0)]]  # all grass types: show the first one's
         self.panel.set_value(tuple(float(v) for v in values))
         self.picked.emit(tuple(float(v) for v in values))
 

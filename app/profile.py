@@ -6,7 +6,14 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from core.profile import SUM_ALLOWANCE_MS, SUM_TOLERANCE, parts_add_up, summarize, table
+from core.profile import (
+    SUM_ALLOWANCE_MS,
+    SUM_TOLERANCE,
+    frames_csv,
+    parts_add_up,
+    summarize,
+    table,
+)
 
 
 def profile(
@@ -29,10 +36,12 @@ def profile(
     else:
         views = [(name, [scene.camera(name)] * frames) for name in scene.cameras]
     rows, document = [], {"scene": scene.name, "size": list(size), "viewpoints": []}
+    every = []
     try:
         for name, cameras in views:
             renderer.render(cameras[0], size, measure=True)  # warm-up: shaders compile lazily
             stats = [renderer.render(camera, size, measure=True)[1] for camera in cameras]
+            every += stats
             summary = summarize(stats)
             rows.append((name, summary))
             document["viewpoints"].append(
@@ -53,7 +62,10 @@ def profile(
         f"{'add up to' if ok else 'DO NOT add up to'} t_a within "
         f"{SUM_TOLERANCE:.0%} + {SUM_ALLOWANCE_MS:g} ms in every frame"
     )
-    if out is not None:
+    if out is not None and out.suffix.lower() == ".csv":  # the designer's recordings too
+        out.write_text(frames_csv(every))
+        text += f"\nwrote {out}"
+    elif out is not None:
         out.write_text(json.dumps(document, indent=2) + "\n")
         text += f"\nwrote {out}"
     return text, document

@@ -16,6 +16,7 @@ from core.design_maps import LAYER_INDEX, LAYERS, DesignMaps
 FALLOFFS = ("smooth", "linear", "constant", "sharp")
 MODES = ("paint", "erase", "smooth", "fill")
 TILE = 64  # texels per side of the tiles a stroke saves for undo
+ALL_TYPES = -1  # density channel: every grass type's at once (a bare path clears them all)
 
 
 @dataclass(frozen=True)
@@ -84,10 +85,13 @@ class Stroke:
 
     def __post_init__(self) -> None:
         index = LAYER_INDEX[self.layer]  # KeyError names the map
-        if self.layer == "density" and self.channel is None:
+        if self.layer == "density" and self.channel == ALL_TYPES:
+            self.channel = None  # every channel; one value is painted into all of them
+        elif self.layer == "density" and self.channel is None:
             self.channel = 0  # the density map has a channel per grass type: the first
         channels = 1 if self.channel is not None else LAYERS[index].channels
-        if self.brush.mode == "paint" and len(self.brush.value) != channels:
+        single = self.layer == "density" and len(self.brush.value) == 1
+        if self.brush.mode == "paint" and len(self.brush.value) != channels and not single:
             raise ValueError(
                 f"a brush for the {self.layer} map needs {channels} value(s), "
                 f"got {len(self.brush.value)}"

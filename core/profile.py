@@ -3,6 +3,10 @@ frame statistics over several frames, and the check that the parts add up to the
 
 from __future__ import annotations
 
+import csv
+import io
+import json
+
 import numpy as np
 
 from core.stats import FrameStats
@@ -62,3 +66,61 @@ def table(rows: list[tuple[str, dict[str, dict[str, float]]]]) -> str:
             label = name if i == 0 else ""
             lines.append(f"{label:16s}{stat:7s}" + "".join(cells))
     return "\n".join(lines)
+
+
+WINDOW = 60  # frames the live overlay averages over
+RECORD_COLUMNS = (
+    "t_a_ms",
+    "t_q_ms",
+    "t_g_ms",
+    "t_v_ms",
+    "t_i_ms",
+    "t_m_ms",
+    "t_o_ms",
+    "c_g",
+    "c_v",
+    "c_i",
+    "fps",
+    "blades",
+    "triangles",
+    "width",
+    "height",
+)
+
+
+def rolling(frames: list[FrameStats]) -> dict[str, tuple[float, float, float]]:
+    """{column: (average, min, max)} over the given frames (the live timing overlay)."""
+    out = {}
+    for column in COLUMNS:
+        values = np.array([_value(f, column) for f in frames]) if frames else np.zeros(1)
+        out[column] = (float(values.mean()), float(values.min()), float(values.max()))
+    return out
+
+
+def overlay_text(frames: list[FrameStats]) -> str:
+    """The thesis's table as a small block: a row per column, average / min / max."""
+    stats = rolling(frames)
+    lines = [f"{'':4s}{'avg':>8s}{'min':>8s}{'max':>8s}   last {len(frames)} frames"]
+    for column in COLUMNS:
+        avg, lo, hi = stats[column]
+        fmt = "{:8.0f}" if column.startswith("c_") else "{:8.1f}"
+        lines.append(f"{column:4s}" + "".join(fmt.format(v) for v in (avg, lo, hi)))
+    return "\n".join(lines)
+
+
+def frames_csv(frames: list[FrameStats]) -> str:
+    """One row per frame, the columns of RECORD_COLUMNS (spreadsheet-friendly)."""
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["frame", *RECORD_COLUMNS])
+    for i, f in enumerate(frames):
+        d = f.to_dict()
+        writer.writerow(
+            [i, *(round(d[c], 4) if isinstance(d[c], float) else d[c] for c in RECORD_COLUMNS)]
+        )
+    return buffer.getvalue()
+
+
+def frames_json(frames: list[FrameStats], **about) -> str:
+    """{about…, "frames": [one stats object per frame]} (the stats JSON of DESIGN.md)."""
+    return json.dumps({**about, "frames": [f.to_dict() for f in frames]}, indent=1) + "\n"

@@ -146,7 +146,7 @@ class LodPanel(QWidget):
 
     @staticmethod
     def _distance() -> QDoubleSpinBox:
-        box = QDoubleSpinBox(minimum=0.0, maximum=HORIZON, decimals=1, singleStep=1.0)
+        box = QDoubleSpinBox(minimum=0.0, maximum=HORIZON, decimals=2, singleStep=0.5)
         box.setButtonSymbols(QDoubleSpinBox.ButtonSymbols.NoButtons)  # wheel and keys step
         box.setKeyboardTracking(False)  # typed numbers apply on Enter, not per digit
         return box

@@ -19,7 +19,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.brush import FALLOFFS, MODES, Brush
+from core.brush import ALL_TYPES, FALLOFFS, MODES, Brush
 
 SCALAR_LAYERS = {  # map -> (value label, maximum)
     "density": ("Density", 1.0),
@@ -108,6 +108,8 @@ class PaintPanel(QWidget):
     def set_grass_names(self, names: list[str]) -> None:
         self.layer_box.blockSignals(True)
         self.layer_box.clear()
+        if len(names) > 1:
+            self.layer_box.addItem("density — all grass types", ("density", ALL_TYPES))
         for i, name in enumerate(names):
             self.layer_box.addItem(f"density — {name}", ("density", i))
         self.layer_box.addItem("colour (RGB + weight)", ("color", None))
@@ -120,7 +122,16 @@ class PaintPanel(QWidget):
     @property
     def target(self) -> tuple[str, int | None]:
         """(map name, density channel or None)."""
-        return self.layer_box.currentData()
+        data = self.layer_box.currentData()
+        return tuple(data) if data else ("density", 0)
+
+    def select(self, layer: str, channel: int | None = None) -> None:
+        """Paint this map next (channel: a grass type's density, or ALL_TYPES)."""
+        for i in range(self.layer_box.count()):
+            if tuple(self.layer_box.itemData(i)) == (layer, channel):
+                self.layer_box.setCurrentIndex(i)
+                return
+        raise KeyError(f"no map {layer!r} (channel {channel}) to paint")
 
     def value(self) -> tuple[float, ...]:
         layer, _ = self.target

@@ -86,6 +86,7 @@ class GrassViewport(QOpenGLWidget):
         self._fly_timer.setInterval(30)
         self._fly_timer.timeout.connect(self._fly_step)
         self.last_stats = FrameStats()
+        self.continuous = False  # draw frame after frame (profiling)
         self.tool = "camera"  # camera | paint
         self.brush_size = 24.0  # texels, for the outline
         self.show_zones = False  # LOD zone rings on the ground
@@ -290,6 +291,17 @@ class GrassViewport(QOpenGLWidget):
         stats = self.pipeline.render(self.camera, out, size, measure=True, preview=moving)
         self.last_stats = stats
         self.frame_rendered.emit(stats)
+        if self.continuous:
+            QTimer.singleShot(0, self.update)
+
+    @property
+    def settling(self) -> bool:
+        """True while frames are previews because the cursor just moved."""
+        return self._settle.isActive()
+
+    def set_continuous(self, on: bool) -> None:
+        self.continuous = on
+        self.update()
 
     # -- mouse and keys ----------------------------------------------------------------------
     def mousePressEvent(self, event) -> None:

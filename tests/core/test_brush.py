@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from core.brush import Brush, Stroke, falloff
+from core.brush import ALL_TYPES, Brush, Stroke, falloff
 from core.design_maps import DesignMaps
 
 
@@ -79,3 +79,13 @@ def test_fill_sets_the_whole_map_in_one_step_and_bad_brushes_are_refused():
         Brush(size=0)
     with pytest.raises(ValueError, match="unknown falloff 'soft'"):
         Brush(falloff="soft")
+
+
+def test_one_value_clears_every_grass_type_at_once():
+    maps = DesignMaps(64)
+    stroke = Stroke(
+        maps, "density", Brush(size=10, strength=1.0, value=(0.0,), falloff="constant"), ALL_TYPES
+    )
+    stroke.add(32.0, 32.0)
+    assert np.all(maps.layer("density")[30:34, 30:34] == 0.0)  # all four channels
+    assert np.all(maps.layer("density")[:20] == 1.0)

@@ -1,0 +1,163 @@
+"""Painting, the LOD editor and the timing overlay in a real window, driven by mouse and keys."""
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPoint, Qt
+from PySide6.QtGui import QColor
+from PySide6.QtTest import QTest
+
+from tests.conftest import grass_mask
+from tests.widgets.conftest import grab, wait_for_slices
+
+pytestmark = pytest.mark.gui
+
+
+def top_view(window, qtbot):
+    """Look straight down on the 8 × 8 cells, geometry everywhere (the brush's footprint is
+    then where it was painted), with the paint tool on."""
+    window.viewport.set_camera(window.scene.camera("top"))
+    window.mode_actions["geometry"].trigger()
+    window.paint_action.trigger()
+    assert window.viewport.tool == "paint"
+    wait_for_slices(window, qtbot)
+    return grab(window)
+
+
+def drag(qtbot, widget, points, modifier=Qt.KeyboardModifier.NoModifier):
+    QTest.mousePress(widget, Qt.MouseButton.LeftButton, modifier, points[0])
+    for p in points[1:]:
+        QTest.mouseMove(widget, p)
+        qtbot.wait(10)
+    QTest.mouseRelease(widget, Qt.MouseButton.LeftButton, modifier, points[-1])
+    # while the cursor moves frames are previews (no MSAA); compare full-quality frames
+    qtbot.waitUntil(lambda: not widget.settling, timeout=5000)
+
+
+def stroke_line(vp):
+    """A horizontal stroke across the middle of the viewport, from 30 % to 70 % of its width."""
+    y = vp.height() // 2
+    return [QPoint(int(vp.width() * f), y) for f in np.linspace(0.3, 0.7, 12)], y
+
+
+def test_a_stroke_bares_the_grass_under_it_only_and_undo_redo_are_exact(window, qtbot):
+    vp = window.viewport
+    before_image = top_view(window, qtbot)
+    maps_before = window.maps.stack.copy()
+    panel = window.paint_panel
+    panel.select("density", 0)
+    panel.size_box.setValue(16)
+    panel.strength_box.setValue(1.0)
+    panel.value_box.setValue(0.0)
+    points, y = stroke_line(vp)
+    drag(qtbot, vp, points)
+    assert window.undo_stack.count() == 1 and window.undo_stack.canUndo()
+    painted = window.maps.stack.copy()
+    changed = np.any(painted != maps_before, axis=-1)
+    assert changed[0].any() and not changed[1:].any()  # only the density map
+    vp.update()
+    after_image = grab(window)
+
+    grass_before, grass_after = grass_mask(before_image), grass_mask(after_image)
+    x0, x1 = int(vp.width() * 0.36), int(vp.width() * 0.64)
+    under = (slice(y - 4, y + 5), slice(x0, x1))
+    assert grass_before[under].mean() > 0.3
+    assert grass_after[under].mean() < 0.5 * grass_before[under].mean()
+    far = np.ones(grass_before.shape, bool)
+    far[y - 60 : y + 61, :] = False  # a brush radius (~15 px) plus leaning blades away
+    assert abs(grass_after[far].mean() - grass_before[far].mean()) < 0.01
+
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    QTest.keyClick(vp, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # Ctrl+Z
+    assert np.array_equal(window.maps.stack, maps_before)
+    QTest.keyClick(
+        vp, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+    )
+    assert np.array_equal(window.maps.stack, painted)
+
+
+def test_ctrl_erases_back_to_full_density(window, qtbot):
+    vp = window.viewport
+    top_view(window, qtbot)
+    panel = window.paint_panel
+    panel.select("density", 0)
+    panel.strength_box.setValue(1.0)
+    panel.value_box.setValue(0.0)
+    panel.falloff_box.setCurrentText("constant")
+    points, _ = stroke_line(vp)
+    drag(qtbot, vp, points)
+    assert window.maps.layer("density")[..., 0].min() == 0.0
+    panel.size_box.setValue(40)  # wider than the first stroke, so it erases all of it
+    drag(qtbot, vp, points, Qt.KeyboardModifier.ControlModifier)
+    assert window.maps.layer("density")[..., 0].min() == 1.0
+    assert window.undo_stack.count() == 2
+
+
+def test_painting_colour_with_high_alpha_shows_that_colour(window, qtbot):
+    vp = window.viewport
+    before = top_view(window, qtbot)
+    panel = window.paint_panel
+    panel.select("color")
+    panel.color = QColor(230, 40, 220)  # magenta: no grass is that colour
+    panel.alpha_box.setValue(1.0)
+    panel.strength_box.setValue(1.0)
+    panel.size_box.setValue(40)
+    points, y = stroke_line(vp)
+    drag(qtbot, vp, points)
+    vp.update()
+    after = grab(window)
+    x0, x1 = int(vp.width() * 0.4), int(vp.width() * 0.6)
+    region = (slice(y - 5, y + 6), slice(x0, x1))
+
+    def magenta(image):
+        r, g, b = (image[..., c].astype(float) for c in range(3))
+        return (r > 1.3 * g) & (b > 1.3 * g)
+
+    assert magenta(before)[region].mean() < 0.05
+    assert magenta(after)[region].mean() > 0.5
+    assert magenta(after)[: y - 80].mean() < 0.05  # nowhere else
+
+
+def test_eyedropper_takes_the_value_under_the_cursor(window, qtbot):
+    vp = window.viewport
+    top_view(window, qtbot)
+    window.maps.fill("ambient", 0.35)
+    panel = window.paint_panel
+    panel.select("ambient")
+    panel.value_box.setValue(1.0)
+    window.painter.start_eyedropper()
+    QTest.mouseClick(vp, Qt.MouseButton.LeftButton, pos=QPoint(vp.width() // 2, vp.height() // 2))
+    assert panel.value_box.value() == pytest.approx(0.35)
+    assert window.undo_stack.count() == 0  # picking paints nothing
+
+
+def test_editing_a_lod_end_changes_the_counts_in_the_overlay(window, qtbot):
+    vp = window.viewport
+    vp.set_camera(window.scene.camera("grazing"))
+    window.timings_action.trigger()
+    assert window.overlay.isVisible()
+    wait_for_slices(window, qtbot)
+    vp.update()
+    qtbot.waitUntil(lambda: vp.last_stats.c_v > 0, timeout=30000)
+    before = vp.last_stats
+    panel = window.lod_panel
+    panel.end_box(0).setValue(5.5)  # geometry to 5.5 instead of 3.5 + 0.75
+    assert window.lods[0].levels[0].end == 5.5
+    qtbot.waitUntil(lambda: vp.last_stats.c_g != before.c_g, timeout=30000)
+    after = vp.last_stats
+    assert after.c_g > before.c_g
+    text = window.overlay.text()
+    row = next(line for line in text.splitlines() if line.startswith("c_g"))
+    assert float(row.split()[3]) == after.c_g  # max over the last frames: the new count
+    assert panel.table.item(0, 5).text() == f"{after.c_g:,}"
+    window.undo_stack.undo()
+    assert window.lods[0].levels[0].end == 4.25
+
+
+def test_an_impossible_lod_edit_is_refused_with_the_reason(window, qtbot):
+    panel = window.lod_panel
+    before = window.lods[0]
+    panel.end_box(0).setValue(50.0)  # past the volume level's end
+    assert window.lods[0] == before
+    assert "increasing" in panel.message.text()
+    qtbot.waitUntil(lambda: panel.end_box(0).value() == before.levels[0].end)
