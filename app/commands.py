@@ -155,3 +155,34 @@ class SetLod(Command):
         twin = SetLod(self.model, self.index, self.new)
         twin.old = self.old
         return twin
+
+
+class SetMap(Command):
+    """A whole map (or one grass type's density) replaced, e.g. by an imported file."""
+
+    def __init__(self, maps, layer: str, channel: int | None, new, text: str) -> None:
+        super().__init__(text)
+        self.maps, self.layer, self.channel, self.new = maps, layer, channel, new
+        view = maps.layer(layer)
+        self.old = view[..., [channel]].copy() if channel is not None else view.copy()
+
+    def _put(self, values) -> None:
+        if self.channel is not None:
+            self.maps.write(self.layer, 0, 0, values[..., 0], channel=self.channel)
+        else:
+            self.maps.write(self.layer, 0, 0, values)
+
+    def apply(self) -> None:
+        self._put(self.new)
+
+    def revert(self) -> None:
+        self._put(self.old)
+
+    def clone(self) -> SetMap:
+        twin = SetMap(self.maps, self.layer, self.channel, self.new, self.text())
+        twin.old = self.old
+        return twin
+
+    @property
+    def memory_bytes(self) -> int:
+        return self.old.nbytes + self.new.nbytes

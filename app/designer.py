@@ -18,6 +18,7 @@ from PySide6.QtWidgets import (
 )
 
 from app import commands
+from app.map_files import MapFileActions
 from app.painting import PaintController
 from app.projects import ProjectActions
 from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
@@ -100,6 +101,7 @@ class DesignerWindow(QMainWindow):
         self.lods = lod_design(scene)
         self.paint_panel = PaintPanel(self.lods.names)
         self.painter = PaintController(self)
+        self.map_files = MapFileActions(self)
         self._show_scene(scene)
         self.viewport.set_density(self.design.density)
         self.viewport.set_slice_params(self.design.slices)
@@ -143,10 +145,10 @@ class DesignerWindow(QMainWindow):
         self.viewport.paint_pressed.connect(self.painter.press)
         self.viewport.paint_moved.connect(self._paint_move)
         self.viewport.paint_released.connect(self.painter.release)
-        self.paint_panel.brush_changed.connect(
-            lambda: self.viewport.set_brush_size(self.paint_panel.size_box.value())
-        )
+        self.paint_panel.brush_changed.connect(self._on_brush_changed)
         self.painter.heights_changed.connect(self._rebuild_terrain)
+        self.paint_panel.import_requested.connect(lambda: self.map_files.import_map())
+        self.paint_panel.export_requested.connect(lambda: self.map_files.export_map())
         self.lod_panel.lod_edited.connect(
             lambda i, config: self.push(commands.SetLod(self.lods, i, config))
         )
@@ -273,6 +275,15 @@ class DesignerWindow(QMainWindow):
         if on:
             self.paint_dock.show()
             self.paint_dock.raise_()
+
+    def _on_brush_changed(self) -> None:
+        self.viewport.set_brush_size(self.paint_panel.size_box.value())
+        flat = self.paint_panel.target[0] == "height" and self.scene.height_scale <= 0
+        self.paint_panel.message.setText(
+            f"the {self.scene.name} scene is flat (height scale 0): its height map has no effect"
+            if flat
+            else ""
+        )
 
     def _paint_move(self, x: float, y: float) -> None:
         self.painter.move(x, y)

@@ -161,3 +161,41 @@ def test_an_impossible_lod_edit_is_refused_with_the_reason(window, qtbot):
     assert window.lods[0] == before
     assert "increasing" in panel.message.text()
     qtbot.waitUntil(lambda: panel.end_box(0).value() == before.levels[0].end)
+
+
+def test_a_broken_map_file_gives_one_message_and_keeps_the_maps(window, tmp_path, monkeypatch):
+    from PySide6.QtWidgets import QMessageBox
+
+    messages = []
+    monkeypatch.setattr(QMessageBox, "warning", lambda parent, title, text: messages.append(text))
+    window.paint_panel.select("density", 0)
+    before = window.maps.stack.copy()
+    bad = tmp_path / "paths.png"
+    bad.write_bytes(b"\x89PNG\r\n\x1a\n not really")
+    assert not window.map_files.import_map(bad)
+    raw = tmp_path / "terrain.r16"
+    raw.write_bytes(b"\x00" * 1000)
+    raw_size = {"width": 64, "height": 64, "big_endian": False, "low": 0.0, "high": 1.0}
+    assert not window.map_files.import_map(raw, raw=raw_size)
+    assert len(messages) == 2
+    assert "paths.png" in messages[0] and "terrain.r16" in messages[1]
+    assert np.array_equal(window.maps.stack, before)
+    assert window.undo_stack.count() == 0
+
+
+def test_imported_maps_are_resampled_and_undoable_and_export_round_trips(window, tmp_path):
+    from PIL import Image
+
+    window.paint_panel.select("height")
+    ramp = (np.linspace(0, 65535, 512)[None, :].repeat(100, axis=0)).astype(np.uint16)
+    Image.fromarray(ramp).save(tmp_path / "ramp.png")  # 16-bit, 512 × 100
+    before = window.maps.stack.copy()
+    assert window.map_files.import_map(tmp_path / "ramp.png")
+    assert "resampled" in window.statusBar().currentMessage()
+    height = window.maps.layer("height")[..., 0]
+    assert height.shape == (256, 256) and np.all(np.diff(height[128, 8:-8]) > 0)
+    assert window.map_files.export_map(tmp_path / "out.png")
+    with Image.open(tmp_path / "out.png") as exported:
+        assert exported.mode.startswith("I") and exported.size == (256, 256)
+    window.undo_stack.undo()
+    assert np.array_equal(window.maps.stack, before)

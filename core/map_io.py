@@ -1,0 +1,146 @@
+"""Design maps to and from files (map import and export): PNG 8- and 16-bit greyscale (height
+maps from terrain tools are 16-bit), RGB(A) images for colour, and raw 16-bit heights (.r16 /
+.raw: no header, so size, byte order and height range come from the person). Maps of another
+size are resampled bilinearly. Every unreadable file raises MapFileError naming the file and
+the reason."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+from PIL import Image, UnidentifiedImageError
+
+from core.design_maps import LAYER_INDEX, LAYERS
+
+RAW_SUFFIXES = (".r16", ".raw")
+
+
+class MapFileError(Exception):
+    """A map file that cannot be read or written; the message names the file."""
+
+
+def read_image(path: Path | str) -> np.ndarray:
+    """(rows, columns, channels) float32 in 0 … 1: 1 channel for greyscale (8 or 16 bit),
+    3 for RGB, 4 for RGBA."""
+    path = Path(path)
+    try:
+        with Image.open(path) as image:
+            image.load()
+            return _to_array(image, path)
+    except FileNotFoundError:
+        raise MapFileError(f"{path}: no such file") from None
+    except UnidentifiedImageError:
+        raise MapFileError(f"{path.name}: not an image Sward can read") from None
+    except (OSError, SyntaxError, ValueError) as exc:  # Pillow's truncated / broken files
+        raise MapFileError(f"{path.name}: the image is damaged or truncated ({exc})") from None
+
+
+def _to_array(image: Image.Image, path: Path) -> np.ndarray:
+    mode = image.mode
+    if mode in ("I;16", "I;16B", "I;16L", "I;16N"):
+        data = np.asarray(image, np.uint16).astype(np.float32) / 65535.0
+    elif mode == "I":  # 32-bit int container of 16-bit PNGs
+        data = np.clip(np.asarray(image, np.float64) / 65535.0, 0.0, 1.0).astype(np.float32)
+    elif mode == "F":
+        data = np.asarray(image, np.float32)
+    elif mode in ("L", "1"):
+        data = np.asarray(image.convert("L"), np.float32) / 255.0
+    elif mode in ("RGB", "RGBA"):
+        data = np.asarray(image, np.float32) / 255.0
+    elif mode in ("P", "LA", "PA", "RGBa", "La"):
+        data = np.asarray(image.convert("RGBA"), np.float32) / 255.0
+    else:
+        raise MapFileError(
+            f"{path.name}: unusable image mode {mode}; use greyscale (8 or 16 bit), RGB or RGBA"
+        )
+    if data.ndim == 2:
+        data = data[..., None]
+    if not np.all(np.isfinite(data)):
+        raise MapFileError(f"{path.name}: the image holds values that are not numbers")
+    return data
+
+
+def read_raw16(
+    path: Path | str,
+    width: int,
+    height: int,
+    big_endian: bool = False,
+    low: float = 0.0,
+    high: float = 1.0,
+) -> np.ndarray:
+    """A raw 16-bit height field (no header): (rows, columns, 1) in low … high."""
+    path = Path(path)
+    if width < 1 or height < 1:
+        raise MapFileError(f"{path.name}: width and height must be at least 1")
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise MapFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    expected = width * height * 2
+    if len(data) != expected:
+        side = math.isqrt(len(data) // 2)
+        hint = f"; a square map of {side} × {side}?" if side * side * 2 == len(data) else ""
+        raise MapFileError(
+            f"{path.name}: {len(data):,} bytes, but {width} × {height} 16-bit values need "
+            f"{expected:,}{hint}"
+        )
+    values = np.frombuffer(data, ">u2" if big_endian else "<u2").reshape(height, width)
+    return (low + (high - low) * (values.astype(np.float32) / 65535.0))[..., None]
+
+
+def resample(values: np.ndarray, size: tuple[int, int]) -> np.ndarray:
+    """(rows, columns, channels) resized bilinearly to size = (width, height)."""
+    width, height = size
+    if values.shape[1] == width and values.shape[0] == height:
+        return values
+    channels = [
+        np.asarray(
+            Image.fromarray(np.ascontiguousarray(values[..., c], np.float32)).resize(
+                (width, height), Image.Resampling.BILINEAR
+            )
+        )
+        for c in range(values.shape[2])
+    ]
+    return np.stack(channels, axis=-1).astype(np.float32)
+
+
+def fit_channels(values: np.ndarray, layer: str, single: bool) -> np.ndarray:
+    """An image's channels as a map wants them: one value (density of one grass type, height),
+    RGB + weight (colour: an image without alpha replaces the blades' colour fully), grey or
+    RGB light."""
+    channels = LAYERS[LAYER_INDEX[layer]].channels
+    rgb = values[..., :3] if values.shape[2] >= 3 else np.repeat(values[..., :1], 3, axis=2)
+    grey = (
+        values[..., :1]
+        if values.shape[2] < 3
+        else (0.299 * rgb[..., :1] + 0.587 * rgb[..., 1:2] + 0.114 * rgb[..., 2:3])
+    )
+    if single or channels == 1:
+        return grey.astype(np.float32)
+    if layer == "color":
+        alpha = values[..., 3:4] if values.shape[2] == 4 else np.ones_like(grey)
+        return np.concatenate([rgb, alpha], axis=2).astype(np.float32)
+    if channels == 3:
+        return rgb.astype(np.float32)
+    return np.repeat(grey, channels, axis=2).astype(np.float32)
+
+
+def write_map(path: Path | str, values: np.ndarray, big_endian: bool = False) -> None:
+    """Save (rows, columns, channels) in 0 … 1: .r16 / .raw raw 16-bit of the first channel,
+    otherwise PNG — 16-bit greyscale for one channel, 8-bit RGB or RGBA for three or four."""
+    path = Path(path)
+    v = np.clip(np.nan_to_num(values, nan=0.0), 0.0, 1.0)
+    try:
+        if path.suffix.lower() in RAW_SUFFIXES:
+            raw = np.round(v[..., 0] * 65535.0).astype(">u2" if big_endian else "<u2")
+            path.write_bytes(raw.tobytes())
+        elif v.shape[2] == 1:
+            grey = np.round(v[..., 0] * 65535.0).astype(np.uint16)
+            Image.fromarray(grey).save(path, format="PNG")  # uint16: mode I;16
+        else:
+            rgb = v if v.shape[2] in (3, 4) else np.repeat(v[..., :1], 3, axis=2)
+            Image.fromarray(np.round(rgb * 255.0).astype(np.uint8)).save(path, format="PNG")
+    except OSError as exc:
+        raise MapFileError(f"{path}: cannot write ({exc.strerror or exc})") from None
