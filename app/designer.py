@@ -27,6 +27,7 @@ from core.lod_edit import LodDesign
 from core.params import PatchParams, SliceParams
 from core.patch import GrassPatch, generate_patch
 from widgets.lod_panel import LodPanel
+from widgets.map_view import MapView
 from widgets.paint_panel import PaintPanel
 from widgets.patch_panel import PatchPanel
 from widgets.profile_view import ProfileOverlay, ProfilePanel
@@ -101,6 +102,7 @@ class DesignerWindow(QMainWindow):
         self.lods = lod_design(scene)
         self.paint_panel = PaintPanel(self.lods.names)
         self.painter = PaintController(self)
+        self.map_view = MapView()
         self.map_files = MapFileActions(self)
         self._show_scene(scene)
         self.viewport.set_density(self.design.density)
@@ -120,14 +122,17 @@ class DesignerWindow(QMainWindow):
         self.profile_dock = self._dock("Timings", self.profile_panel, "profile-dock")
         self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
         self.profile_panel.recorded.connect(self._save_recording)
+        self.map_dock = self._dock("Map", self.map_view, "map-dock")
         self.history = QUndoView(self.undo_stack)
         self.history.setEmptyLabel("(opened)")
         self.history_dock = self._dock("History", self.history, "history-dock")
         self.tabifyDockWidget(dock, self.paint_dock)
         self.tabifyDockWidget(self.paint_dock, self.lod_dock)
         self.tabifyDockWidget(self.history_dock, self.profile_dock)
+        self.tabifyDockWidget(self.profile_dock, self.map_dock)
         self.history_dock.raise_()
         dock.raise_()
+        self.resizeDocks([dock], [380], Qt.Orientation.Horizontal)
 
         self.status = QLabel("generating patch …")
         self.statusBar().addPermanentWidget(self.status, 1)
@@ -147,6 +152,9 @@ class DesignerWindow(QMainWindow):
         self.viewport.paint_released.connect(self.painter.release)
         self.paint_panel.brush_changed.connect(self._on_brush_changed)
         self.painter.heights_changed.connect(self._rebuild_terrain)
+        self.map_view.pressed.connect(self.painter.press)
+        self.map_view.moved.connect(self.painter.move)
+        self.map_view.released.connect(self.painter.release)
         self.paint_panel.import_requested.connect(lambda: self.map_files.import_map())
         self.paint_panel.export_requested.connect(lambda: self.map_files.export_map())
         self.lod_panel.lod_edited.connect(
@@ -232,7 +240,8 @@ class DesignerWindow(QMainWindow):
         )
         view.addAction(self.timings_action)
         view.addSeparator()
-        for d in (dock, self.paint_dock, self.lod_dock, self.history_dock, self.profile_dock):
+        docks = (self.paint_dock, self.lod_dock, self.map_dock, self.history_dock)
+        for d in (dock, *docks, self.profile_dock):
             view.addAction(d.toggleViewAction())
         paint = self.menuBar().addMenu("&Paint")
         self.paint_action = self._action("&Paint in the viewport", "B", self._set_painting, True)
@@ -278,6 +287,8 @@ class DesignerWindow(QMainWindow):
 
     def _on_brush_changed(self) -> None:
         self.viewport.set_brush_size(self.paint_panel.size_box.value())
+        self.map_view.brush_size = float(self.paint_panel.size_box.value())
+        self.map_view.show_layer(*self.paint_panel.target)
         flat = self.paint_panel.target[0] == "height" and self.scene.height_scale <= 0
         self.paint_panel.message.setText(
             f"the {self.scene.name} scene is flat (height scale 0): its height map has no effect"
@@ -298,6 +309,7 @@ class DesignerWindow(QMainWindow):
         self.viewport.set_terrain(scene.terrain())
         self.maps = scene.design_maps()
         self.painter.set_maps(self.maps)
+        self.map_view.set_maps(self.maps)
         self.viewport.set_design_maps(self.maps)
         self.viewport.set_props(scene.prop_boxes())
         self.viewport.set_lod(scene.lod)
@@ -314,6 +326,7 @@ class DesignerWindow(QMainWindow):
             self.scene = scene
             self.setWindowTitle(f"Sward — {scene.name}[*]")
             self.undo_stack.clear()
+            self.overlay.frames.clear()
             self.lods = lod_design(scene)
             self.lods.changed.connect(self.viewport.set_layer_lod)
             self.lod_panel.set_model(self.lods)
