@@ -11,6 +11,7 @@ from PySide6.QtWidgets import (
     QApplication,
     QDockWidget,
     QFileDialog,
+    QInputDialog,
     QLabel,
     QMainWindow,
     QMessageBox,
@@ -18,6 +19,7 @@ from PySide6.QtWidgets import (
 )
 
 from app import commands
+from app.autosave import Autosave
 from app.map_files import MapFileActions
 from app.painting import PaintController
 from app.projects import ProjectActions
@@ -95,6 +97,7 @@ class DesignerWindow(QMainWindow):
         self.history_cap = commands.MEMORY_CAP
         self.builder = PatchBuilder(self)
         self.projects = ProjectActions(self)
+        self.autosave = Autosave(self)
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
         self.patch: GrassPatch | None = None
 
@@ -390,10 +393,42 @@ class DesignerWindow(QMainWindow):
         )
 
     def _save_image(self) -> None:
+        w, h = self.viewport.width(), self.viewport.height()
+        sizes = {
+            f"window size ({w} × {h})": 1,
+            f"2 × ({2 * w} × {2 * h})": 2,
+            f"4 × ({4 * w} × {4 * h})": 4,
+        }
+        choice, ok = QInputDialog.getItem(self, "Save image", "Size", list(sizes), 0, False)
+        if not ok:
+            return
         path, _ = QFileDialog.getSaveFileName(self, "Save image", "grass.png", "PNG (*.png)")
         if path:
-            if not self.viewport.grabFramebuffer().save(path, "PNG"):
-                self.statusBar().showMessage(f"could not write {path}", 5000)
+            self.save_image(path, sizes[choice])
+
+    def save_image(self, path: str, scale: int = 1) -> bool:
+        """Save the view as PNG at the viewport's size times `scale` (drawn anew, not
+        enlarged)."""
+        from PIL import Image
+
+        size = (self.viewport.width() * scale, self.viewport.height() * scale)
+        limit = self.viewport.ctx.info["GL_MAX_RENDERBUFFER_SIZE"]
+        if max(size) > limit:
+            QMessageBox.warning(
+                self, "Sward", f"{size[0]} × {size[1]} is larger than this GPU draws ({limit})"
+            )
+            return False
+        QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
+        try:
+            image = self.viewport.render_image(size)
+            Image.fromarray(image).save(path, format="PNG")
+        except OSError as exc:
+            QMessageBox.warning(self, "Sward", f"cannot write {path}: {exc.strerror or exc}")
+            return False
+        finally:
+            QApplication.restoreOverrideCursor()
+        self.statusBar().showMessage(f"saved {size[0]} × {size[1]} image to {path}", 5000)
+        return True
 
     def _save_recording(self, frames: list) -> None:
         if not frames:
@@ -415,6 +450,8 @@ class DesignerWindow(QMainWindow):
         if not self.projects.confirm_discard():
             event.ignore()
             return
+        self.autosave.timer.stop()
+        self.autosave.discard()
         self.builder.wait()
         self.viewport.release_gl()
         super().closeEvent(event)
@@ -431,4 +468,5 @@ def run_designer(scene_name: str = DEFAULT_SCENE) -> int:
     app = QApplication.instance() or QApplication(sys.argv)
     window = DesignerWindow(get_scene(scene_name))
     window.show()
+    window.autosave.recover_if_any()
     return app.exec()

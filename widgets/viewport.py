@@ -24,6 +24,7 @@ from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, z
 from core.stats import FrameStats
 from core.terrain import Terrain
 from render import context
+from render.context import release_framebuffer
 from render.frame import FramePipeline
 from widgets.slice_builder import SliceBuilder
 
@@ -293,6 +294,28 @@ class GrassViewport(QOpenGLWidget):
         self.frame_rendered.emit(stats)
         if self.continuous:
             QTimer.singleShot(0, self.update)
+
+    def render_image(self, size: tuple[int, int]) -> np.ndarray:
+        """The current view drawn at full quality at any size (screenshots larger than the
+        window): (h, w, 3) uint8, top row first, without the brush outline and zone rings."""
+        if self.pipeline is None or self.ctx is None:
+            raise RuntimeError("the viewport has no GL context yet")
+        self.makeCurrent()
+        overlay = self.pipeline.overlay
+        groups = dict(overlay.groups)
+        try:
+            for name in groups:
+                overlay.set_lines(name, [])
+            out = self.ctx.framebuffer(self.ctx.renderbuffer(size, 4))
+            self.pipeline.render(self.camera, out, size)
+            raw = out.read(components=3, alignment=1)
+            release_framebuffer(out, *out.color_attachments)
+        finally:
+            for name, lines in groups.items():
+                overlay.set_lines(name, lines)
+            self.doneCurrent()
+        image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1]
+        return np.ascontiguousarray(image)
 
     @property
     def settling(self) -> bool:

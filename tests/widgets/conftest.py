@@ -18,6 +18,7 @@ def window(qtbot, tmp_path, monkeypatch):
     scene = get_scene("patch-grid")
     scene = type(scene)(**{**scene.__dict__, "params": scene.params.replace(blade_count=600)})
     win = DesignerWindow(scene)
+    win.autosave.directory = tmp_path / "autosave"
     qtbot.addWidget(win)
     win.resize(1300, 640)
     win.show()

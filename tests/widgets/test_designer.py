@@ -168,3 +168,46 @@ def test_closing_with_unsaved_changes_asks_and_cancel_keeps_the_window(window, m
     window.close()
     assert asked and window.isVisible()
     window.undo_stack.setClean()
+
+
+def test_autosave_recovers_unsaved_work_after_a_crash(window, qtbot, tmp_path, monkeypatch):
+    from PySide6.QtWidgets import QMessageBox
+
+    from app.designer import DesignerWindow
+    from app.scenes import get_scene
+
+    assert not window.autosave.save_now()  # nothing unsaved: nothing written
+    window.panel.param("density").setValue(0.45)
+    assert window.autosave.save_now() and window.autosave.path.exists()
+    # the session "crashes": a new one starts with the autosave still there
+    other = DesignerWindow(get_scene("patch-grid"))
+    qtbot.addWidget(other)
+    other.autosave.directory = window.autosave.directory
+    asked = []
+    monkeypatch.setattr(
+        QMessageBox,
+        "question",
+        lambda *a, **k: asked.append(a[2]) or QMessageBox.StandardButton.Yes,
+    )
+    assert other.autosave.recover_if_any()
+    assert "Recover" in asked[0]
+    assert other.design.density == pytest.approx(0.45)
+    assert not other.undo_stack.isClean()  # recovered work still needs saving
+    monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
+    other.close()
+    assert not window.autosave.path.exists()  # a normal close removes it
+
+
+def test_an_image_larger_than_the_window_is_drawn_at_that_size(window, qtbot, tmp_path):
+    from PIL import Image
+
+    wait_for_slices(window, qtbot)
+    path = tmp_path / "big.png"
+    assert window.save_image(str(path), scale=2)
+    vp = window.viewport
+    with Image.open(path) as image:
+        assert image.size == (2 * vp.width(), 2 * vp.height())
+        big = np.asarray(image.convert("RGB"))
+    small = grab(window)
+    assert abs(coverage(big) - coverage(small)) < 0.05  # the same view, not a blank image
+    assert coverage(big) > 0.2
