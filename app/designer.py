@@ -25,9 +25,11 @@ from app.painting import PaintController
 from app.projects import ProjectActions
 from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
 from core.design import PatchDesign
+from core.lighting import Lighting
 from core.lod_edit import LodDesign
 from core.params import PatchParams, SliceParams
 from core.patch import GrassPatch, generate_patch
+from widgets.light_panel import LightPanel
 from widgets.lod_panel import LodPanel
 from widgets.map_view import MapView
 from widgets.paint_panel import PaintPanel
@@ -118,6 +120,8 @@ class DesignerWindow(QMainWindow):
         dock = self._dock("Patch", self.panel, "patch-dock")
         dock.setMinimumWidth(330)
         self.lod_panel = LodPanel(self.lods)
+        self.light_panel = LightPanel(scene.light())
+        self.light_dock = self._dock("Light", self.light_panel, "light-dock")
         self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock")
         self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock")
         self.overlay = ProfileOverlay(self.viewport)
@@ -131,6 +135,7 @@ class DesignerWindow(QMainWindow):
         self.history_dock = self._dock("History", self.history, "history-dock")
         self.tabifyDockWidget(dock, self.paint_dock)
         self.tabifyDockWidget(self.paint_dock, self.lod_dock)
+        self.tabifyDockWidget(self.lod_dock, self.light_dock)
         self.tabifyDockWidget(self.history_dock, self.profile_dock)
         self.tabifyDockWidget(self.profile_dock, self.map_dock)
         self.history_dock.raise_()
@@ -165,9 +170,28 @@ class DesignerWindow(QMainWindow):
         )
         self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
         self.lods.changed.connect(self.viewport.set_layer_lod)
+        self.light_panel.lighting_edited.connect(
+            lambda light: self.push(
+                commands.SetValue("change light", self, "lighting", self.lighting, light, 2)
+            )
+        )
         self._build_menus(dock)
         self.resize(1200, 760)
         self.builder.request(self.design.params)
+
+    @property
+    def lighting(self) -> Lighting:
+        return self.scene.light()
+
+    @lighting.setter
+    def lighting(self, light: Lighting) -> None:
+        """Sun, ambient and fog of the scene (undoable: commands.SetValue)."""
+        self.scene = dataclasses.replace(
+            self.scene, lighting=light, fog_distance=light.fog_distance
+        )
+        self.viewport.set_lighting(light)
+        if self.light_panel.lighting != light:
+            self.light_panel.show_lighting(light)
 
     def _dock(self, title: str, widget, name: str) -> QDockWidget:
         dock = QDockWidget(title, self)
@@ -243,7 +267,7 @@ class DesignerWindow(QMainWindow):
         )
         view.addAction(self.timings_action)
         view.addSeparator()
-        docks = (self.paint_dock, self.lod_dock, self.map_dock, self.history_dock)
+        docks = (self.paint_dock, self.lod_dock, self.light_dock, self.map_dock, self.history_dock)
         for d in (dock, *docks, self.profile_dock):
             view.addAction(d.toggleViewAction())
         paint = self.menuBar().addMenu("&Paint")
@@ -316,7 +340,7 @@ class DesignerWindow(QMainWindow):
         self.viewport.set_design_maps(self.maps)
         self.viewport.set_props(scene.prop_boxes())
         self.viewport.set_lod(scene.lod)
-        self.viewport.set_fog(scene.fog_distance)
+        self.viewport.set_lighting(scene.light())
         self.viewport.set_grass_types(
             [(generate_patch(kind.params), kind.lod, kind.channel) for kind in scene.grass]
         )
@@ -334,6 +358,7 @@ class DesignerWindow(QMainWindow):
             self.lods.changed.connect(self.viewport.set_layer_lod)
             self.lod_panel.set_model(self.lods)
             self.paint_panel.set_grass_names(self.lods.names)
+            self.light_panel.show_lighting(scene.light())
             self._show_scene(scene)
             self.viewport.set_camera(scene.camera())
             self._fill_camera_menu()

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
-
 import moderngl
 import numpy as np
 
@@ -37,9 +35,7 @@ class HeadlessRenderer:
         self.pipeline.set_terrain(scene.terrain())
         self.pipeline.set_design_maps(scene.design_maps())
         self.pipeline.set_props(scene.prop_boxes())
-        self.pipeline.lighting = dataclasses.replace(
-            self.pipeline.lighting, fog_distance=scene.fog_distance
-        )
+        self.pipeline.lighting = scene.light()
         self.pipeline.set_density(scene.density if density is None else density)
         return patch
 

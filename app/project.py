@@ -18,6 +18,7 @@ import numpy as np
 
 from app.scenes import CameraSpec, GrassType, Scene
 from core.design_maps import DesignMaps
+from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.params import ParameterError, PatchParams, SliceParams
 
@@ -99,6 +100,7 @@ def scene_document(scene: Scene) -> dict:
             [list(row[0]), list(row[1]), list(row[2]), *(row[3:] or [])] for row in scene.props
         ],
         "fog_distance": scene.fog_distance,
+        "light": {k: v for k, v in dataclasses.asdict(scene.lighting).items() if k in LIGHT},
         "slices": dataclasses.asdict(scene.slices),
     }
 
@@ -129,7 +131,27 @@ def scene_from_document(doc: dict, stack: np.ndarray) -> Scene:
         ),
         stack=stack,
         slices=SliceParams(**doc.get("slices", {})),
+        lighting=_light_from(doc.get("light", {})),
     )
+
+
+LIGHT = (
+    "sun_elevation",
+    "sun_azimuth",
+    "sun_color",
+    "ambient_color",
+    "translucency",
+    "blade_ao_impact",
+    "blade_ao_height",
+)
+
+
+def _light_from(data: dict) -> Lighting:
+    unknown = set(data) - set(LIGHT)
+    if unknown:
+        raise ValueError(f"unknown light setting {sorted(unknown)[0]!r}")
+    values = {k: tuple(v) if isinstance(v, list) else float(v) for k, v in data.items()}
+    return Lighting(**values)
 
 
 # -- files -----------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -11,6 +12,7 @@ import numpy as np
 from core.camera import Camera
 from core.design_maps import LAYER_INDEX, DesignMaps
 from core.grid import grid_instances
+from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.markings import football_colour_map
 from core.params import DEFAULT_PRESET, PRESETS, PatchParams, SliceParams
@@ -71,6 +73,11 @@ class Scene:
     # a project's painted maps (layers, rows, columns, 4): used instead of the builders above
     stack: np.ndarray | None = None
     slices: SliceParams = field(default_factory=SliceParams)  # how patches become slices
+    lighting: Lighting = field(default_factory=Lighting)  # sun and ambient (fog: fog_distance)
+
+    def light(self) -> Lighting:
+        """The scene's lighting with its fog distance."""
+        return dataclasses.replace(self.lighting, fog_distance=self.fog_distance)
 
     def instances(self) -> np.ndarray:
         return grid_instances(*self.grid, mirror_seed=self.mirror_seed)

@@ -20,6 +20,19 @@ class Lighting:
     soil_color: tuple[float, float, float] = (0.30, 0.25, 0.17)
     fog_distance: float = 160.0
 
+    def __post_init__(self) -> None:
+        if not -10.0 <= self.sun_elevation <= 90.0:
+            raise ValueError(f"sun elevation {self.sun_elevation:g}° is out of range; -10 … 90")
+        for name in ("sun_color", "ambient_color", "sky_color", "soil_color"):
+            colour = getattr(self, name)
+            if len(colour) != 3 or not all(0.0 <= c <= 4.0 for c in colour):
+                raise ValueError(f"{name} must be three values in 0 … 4, got {colour}")
+        for name in ("translucency", "blade_ao_impact"):
+            if not 0.0 <= getattr(self, name) <= 1.0:
+                raise ValueError(f"{name} = {getattr(self, name):g} is out of range; 0 … 1")
+        if self.blade_ao_height <= 0 or self.fog_distance <= 0:
+            raise ValueError("blade AO height and fog distance must be positive")
+
     @property
     def sun_direction(self) -> np.ndarray:
         """Unit vector towards the sun."""

@@ -11,6 +11,7 @@ import pytest
 from app import project
 from app.project import ProjectError, load_project, save_project
 from app.scenes import get_scene
+from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 
 SIZE = (160, 100)
@@ -27,9 +28,13 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     maps = meadow.design_maps()
     maps.write("color", 10, 10, np.full((5, 5, 4), 0.25))  # something painted
     lod = LodConfig((LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8)))
-    scene = dataclasses.replace(meadow, lod=lod, slices=meadow.slices.replace(slices=4, top=256))
+    light = Lighting(sun_elevation=20.0, sun_azimuth=300.0, ambient_color=(0.2, 0.3, 0.4))
+    scene = dataclasses.replace(
+        meadow, lod=lod, slices=meadow.slices.replace(slices=4, top=256), lighting=light
+    )
     save_project(path, scene, maps)
     loaded = load_project(path)
+    assert loaded.lighting == light
     assert loaded.params == scene.params and loaded.lod == lod and loaded.slices == scene.slices
     assert loaded.grass == tuple(dataclasses.replace(g, density_map=None) for g in scene.grass)
     assert loaded.cameras == scene.cameras and loaded.paths == scene.paths
@@ -76,12 +81,14 @@ def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
 
     variant("future.sward", lambda d: d.update(version=99))
     variant("badparam.sward", lambda d: d["params"].update(blade_count=-5))
+    variant("badlight.sward", lambda d: d.update(light={"sun_elevation": 400}))
     variant("nolod.sward", lambda d: d.pop("lod"))
     expected = {
         "text.sward": "not a zip file",
         "truncated.sward": "",
         "future.sward": "version 99",
         "badparam.sward": "blade_count",
+        "badlight.sward": "sun elevation",
         "nolod.sward": "lod",
     }
     for name, reason in expected.items():

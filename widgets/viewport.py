@@ -7,7 +7,6 @@ while the camera moves they are drawn without MSAA (preview), then once more at 
 
 from __future__ import annotations
 
-import dataclasses
 from typing import ClassVar
 
 import numpy as np
@@ -17,6 +16,7 @@ from PySide6.QtOpenGLWidgets import QOpenGLWidget
 
 from core.camera import Camera
 from core.design_maps import DesignMaps
+from core.lighting import Lighting
 from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
@@ -76,7 +76,7 @@ class GrassViewport(QOpenGLWidget):
         self._slice_params = SliceParams()
         self._maps: DesignMaps | None = None
         self._props: np.ndarray | None = None
-        self._fog: float | None = None
+        self._lighting: Lighting | None = None
         self._grass_types: list = []
         self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
@@ -157,12 +157,11 @@ class GrassViewport(QOpenGLWidget):
         self._upload(lambda pipeline: pipeline.set_grass_types(types))
         self.slices.schedule()
 
-    def set_fog(self, distance: float) -> None:
-        self._fog = distance
+    def set_lighting(self, lighting: Lighting) -> None:
+        """Sun, ambient light and fog (core/lighting.py)."""
+        self._lighting = lighting
         if self.pipeline is not None:
-            self.pipeline.lighting = dataclasses.replace(
-                self.pipeline.lighting, fog_distance=distance
-            )
+            self.pipeline.lighting = lighting
         self.update()
 
     def set_design_maps(self, maps: DesignMaps) -> None:
@@ -258,8 +257,8 @@ class GrassViewport(QOpenGLWidget):
             pipeline.set_design_maps(self._maps)
         if self._props is not None:
             pipeline.set_props(self._props)
-        if self._fog is not None:
-            pipeline.lighting = dataclasses.replace(pipeline.lighting, fog_distance=self._fog)
+        if self._lighting is not None:
+            pipeline.lighting = self._lighting
         if self._patch is not None:
             pipeline.set_patch(self._patch)
         if self._grass_types:

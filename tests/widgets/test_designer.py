@@ -211,3 +211,19 @@ def test_an_image_larger_than_the_window_is_drawn_at_that_size(window, qtbot, tm
     small = grab(window)
     assert abs(coverage(big) - coverage(small)) < 0.05  # the same view, not a blank image
     assert coverage(big) > 0.2
+
+
+def test_the_light_panel_relights_the_grass_undoably_and_is_saved(window, qtbot, tmp_path):
+    from app.project import load_project
+
+    before = grab(window).astype(float).mean()
+    window.light_panel.root.child("sun_elevation").setValue(5.0)  # the sun near the horizon
+    assert window.lighting.sun_elevation == 5.0
+    assert window.viewport.pipeline.lighting.sun_elevation == 5.0
+    after = grab(window).astype(float).mean()
+    assert after < before - 3  # low sun: darker grass
+    assert window.projects.save_as(tmp_path / "dusk.sward")
+    assert load_project(tmp_path / "dusk.sward").lighting.sun_elevation == 5.0
+    window.undo_stack.undo()
+    assert window.lighting.sun_elevation == 50.0
+    assert window.light_panel.root.child("sun_elevation").value() == 50.0

@@ -1,0 +1,92 @@
+"""The light panel (thesis 6.4.3): sun elevation and azimuth, sun and ambient colours,
+translucency, how dark the dense grass gets at its roots, and the fog distance — a pyqtgraph
+ParameterTree that shows a Lighting and reports edits as a new one."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from pyqtgraph.parametertree import Parameter, ParameterTree
+from PySide6.QtCore import Signal
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+
+from core.lighting import Lighting
+
+# (field, title, low, high, step, suffix); colours are edited with colour buttons
+NUMBERS = (
+    ("sun_elevation", "Sun elevation", 0.0, 90.0, 1.0, " °"),
+    ("sun_azimuth", "Sun azimuth", 0.0, 360.0, 5.0, " °"),
+    ("translucency", "Translucency", 0.0, 1.0, 0.05, ""),
+    ("blade_ao_impact", "Blade occlusion (B_impact)", 0.0, 1.0, 0.05, ""),
+    ("fog_distance", "Fog distance", 10.0, 5000.0, 10.0, " units"),
+)
+COLOURS = (("sun_color", "Sun colour"), ("ambient_color", "Ambient colour"))
+
+
+class LightPanel(QWidget):
+    lighting_edited = Signal(object)  # Lighting
+
+    def __init__(self, lighting: Lighting, parent=None) -> None:
+        super().__init__(parent)
+        children = [
+            {
+                "name": name,
+                "title": title,
+                "type": "float",
+                "limits": (low, high),
+                "step": step,
+                "suffix": suffix,
+                "value": getattr(lighting, name),
+            }
+            for name, title, low, high, step, suffix in NUMBERS
+        ] + [
+            {
+                "name": name,
+                "title": title,
+                "type": "color",
+                "value": QColor.fromRgbF(*getattr(lighting, name)),
+            }
+            for name, title in COLOURS
+        ]
+        self.root = Parameter.create(name="light", type="group", children=children)
+        self.tree = ParameterTree(showHeader=False)
+        self.tree.setParameters(self.root, showTop=False)
+        self.message = QLabel()
+        self.message.setWordWrap(True)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.tree)
+        layout.addWidget(self.message)
+        self.lighting = lighting
+        self._updating = False
+        self.root.sigTreeStateChanged.connect(self._on_tree_changed)
+
+    def show_lighting(self, lighting: Lighting) -> None:
+        """Model -> widgets (an undo, a newly opened project)."""
+        self.lighting = lighting
+        self._updating = True
+        try:
+            for name, *_ in NUMBERS:
+                self.root.child(name).setValue(getattr(lighting, name))
+            for name, _ in COLOURS:
+                self.root.child(name).setValue(QColor.fromRgbF(*getattr(lighting, name)))
+        finally:
+            self._updating = False
+
+    def _on_tree_changed(self, *_) -> None:
+        if self._updating:
+            return
+        values = {name: float(self.root.child(name).value()) for name, *_ in NUMBERS}
+        for name, _ in COLOURS:
+            c = self.root.child(name).value()
+            values[name] = (c.redF(), c.greenF(), c.blueF())
+        try:
+            lighting = dataclasses.replace(self.lighting, **values)
+        except ValueError as exc:
+            self.message.setText(str(exc))
+            return
+        self.message.clear()
+        if lighting != self.lighting:
+            self.lighting = lighting
+            self.lighting_edited.emit(lighting)
