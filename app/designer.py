@@ -23,7 +23,7 @@ from app.autosave import Autosave
 from app.map_files import MapFileActions
 from app.painting import PaintController
 from app.projects import ProjectActions
-from app.scenes import DEFAULT_SCENE, SCENES, Scene, get_scene
+from app.scenes import DEFAULT_SCENE, SCENES, CameraSpec, Scene, get_scene
 from core.design import PatchDesign
 from core.lighting import Lighting
 from core.lod_edit import LodDesign
@@ -239,6 +239,8 @@ class DesignerWindow(QMainWindow):
         view.addAction(reset)
         self.camera_menu = view.addMenu("&Cameras")
         self._fill_camera_menu()
+        bookmark = self._action("&Bookmark this view…", "Ctrl+D", lambda: self.bookmark_view())
+        view.addAction(bookmark)
         view.addSeparator()
         group = QActionGroup(self)
         self.mode_actions: dict[str, QAction] = {}
@@ -284,6 +286,33 @@ class DesignerWindow(QMainWindow):
                 self._action("&Eyedropper", "I", self.painter.start_eyedropper),
             ]
         )
+
+    @property
+    def cameras(self) -> dict:
+        return self.scene.cameras
+
+    @cameras.setter
+    def cameras(self, cameras: dict) -> None:
+        """The scene's named cameras (bookmarks; undoable: commands.SetValue)."""
+        self.scene = dataclasses.replace(self.scene, cameras=dict(cameras))
+        self._fill_camera_menu()
+
+    def bookmark_view(self, name: str | None = None) -> bool:
+        """Keep the current view as a named camera of the scene (saved with the project)."""
+        if name is None:
+            name, ok = QInputDialog.getText(self, "Bookmark this view", "Name")
+            if not ok:
+                return False
+        name = name.strip()
+        if not name:
+            return False
+        cam = self.viewport.camera
+        spec = CameraSpec(
+            tuple(float(v) for v in cam.eye), tuple(cam.target), far=cam.far, near=cam.near
+        )
+        cameras = {**self.scene.cameras, name: spec}
+        self.push(commands.SetValue(f"bookmark {name}", self, "cameras", self.cameras, cameras))
+        return True
 
     def _fill_camera_menu(self) -> None:
         self.camera_menu.clear()

@@ -227,3 +227,17 @@ def test_the_light_panel_relights_the_grass_undoably_and_is_saved(window, qtbot,
     window.undo_stack.undo()
     assert window.lighting.sun_elevation == 50.0
     assert window.light_panel.root.child("sun_elevation").value() == 50.0
+
+
+def test_a_bookmarked_view_is_in_the_camera_menu_and_the_saved_project(window, tmp_path):
+    from app.project import load_project
+
+    vp = window.viewport
+    vp.camera.orbit(40.0, 10.0)
+    assert window.bookmark_view("over the hill")
+    assert "over the hill" in [a.text() for a in window.camera_menu.actions()]
+    assert window.projects.save_as(tmp_path / "b.sward")
+    spec = load_project(tmp_path / "b.sward").cameras["over the hill"]
+    assert np.allclose(spec.eye, vp.camera.eye, atol=1e-5)
+    window.undo_stack.undo()
+    assert "over the hill" not in window.scene.cameras
