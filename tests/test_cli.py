@@ -123,11 +123,15 @@ def test_profile_prints_the_table_and_the_parts_add_up(tmp_path):
 
 
 def test_profile_along_a_path_and_bad_path(tmp_path):
+    out = tmp_path / "frames.csv"
     r = sward(
-        "profile", "--scene", "patch-grid", "--path", "orbit", "--frames", "3", "--size", "96x64"
-    )
+        "profile", "--scene", "patch-grid", "--path", "orbit", "--frames", "3", "--size", "96x64",
+        "--out", str(out),
+    )  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert "path orbit" in r.stdout
+    rows = out.read_text().splitlines()  # the CSV the designer's Record button writes too
+    assert rows[0].split(",")[:3] == ["frame", "t_a_ms", "t_q_ms"] and len(rows) == 4
     r = sward("profile", "--scene", "patch-grid", "--path", "nowhere")
     assert r.returncode == 2
     assert "unknown camera path 'nowhere'" in r.stderr and "orbit" in r.stderr

@@ -228,3 +228,24 @@ def test_painting_in_the_2d_map_view_changes_the_map_and_its_image(window, qtbot
     assert density[:100].min() == 1.0 and density[160:].min() == 1.0  # nowhere else
     qtbot.waitUntil(lambda: view.displayed()[128, 120] < 0.05)
     assert window.undo_stack.count() == 1
+
+
+def test_recorded_frames_are_saved_as_csv(window, qtbot, tmp_path, monkeypatch):
+    from PySide6.QtWidgets import QFileDialog
+
+    out = tmp_path / "session.csv"
+    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *a, **k: (str(out), "CSV"))
+    panel = window.profile_panel
+    window.profile_dock.show()
+    window.profile_dock.raise_()
+    qtbot.mouseClick(panel.record_button, Qt.MouseButton.LeftButton)
+    assert panel.recording == []
+    qtbot.mouseClick(panel.continuous_box, Qt.MouseButton.LeftButton)  # frame after frame
+    qtbot.waitUntil(lambda: len(panel.recording) >= 3, timeout=30000)
+    qtbot.mouseClick(panel.continuous_box, Qt.MouseButton.LeftButton)
+    qtbot.mouseClick(panel.record_button, Qt.MouseButton.LeftButton)
+    rows = out.read_text().splitlines()
+    assert rows[0].startswith("frame,t_a_ms") and len(rows) >= 4
+    assert all(float(r.split(",")[1]) > 0 for r in rows[1:])  # every frame has its time
+    curve_x, _ = panel.curves["t_g_ms"].getData()
+    assert curve_x is not None and len(curve_x) >= 3  # the live plot follows the frames
