@@ -1,7 +1,8 @@
 """The 2D map view: the design map chosen in the paint panel as an image (pyqtgraph), painted
 with the same brush as the viewport — left drag paints, a click paints one dab (or picks with
 the eyedropper), the wheel zooms, right or middle drag moves the view. A circle shows the
-brush. The image follows every edit of its map, at most every 40 ms."""
+brush. The colour map shows its tint over grey by its weight (grey: the blades keep their own
+colour). The image follows every edit of its map, at most every 40 ms."""
 
 from __future__ import annotations
 
@@ -105,6 +106,9 @@ class MapView(QWidget):
             values = values[..., max(self.channel, 0)]
         elif values.shape[2] == 1:
             values = values[..., 0]
+        elif self.layer == "color":  # the tint over grey by its weight: grey = no tint
+            weight = values[..., 3:4]
+            values = values[..., :3] * weight + 0.5 * (1.0 - weight)
         self.image.setImage(values, levels=LEVELS.get(self.layer, (0.0, 1.0)), autoLevels=False)
 
     def displayed(self) -> np.ndarray:
