@@ -249,3 +249,28 @@ def test_recorded_frames_are_saved_as_csv(window, qtbot, tmp_path, monkeypatch):
     assert all(float(r.split(",")[1]) > 0 for r in rows[1:])  # every frame has its time
     curve_x, _ = panel.curves["t_g_ms"].getData()
     assert curve_x is not None and len(curve_x) >= 3  # the live plot follows the frames
+
+
+def test_painting_height_raises_the_ground_and_the_terrain_follows(window, qtbot):
+    import dataclasses
+
+    hilly = dataclasses.replace(
+        window.scene, height_scale=1.0, height_map=lambda w, h: np.zeros((h, w))
+    )
+    window.open_scene(hilly)
+    vp = window.viewport
+    top_view(window, qtbot)
+    assert vp.pipeline.terrain.cell_max.max() < 0.01
+    panel = window.paint_panel
+    panel.select("height")
+    assert "flat" not in panel.message.text()
+    panel.value_box.setValue(1.0)
+    panel.strength_box.setValue(1.0)
+    panel.size_box.setValue(40)
+    points, _ = stroke_line(vp)
+    drag(qtbot, vp, points)
+    assert window.maps.layer("height").max() > 0.9
+    # the quadtree's bounds follow the painted ground (after the stroke, debounced)
+    qtbot.waitUntil(lambda: vp.pipeline.terrain.cell_max.max() > 0.9, timeout=5000)
+    window.undo_stack.undo()
+    qtbot.waitUntil(lambda: vp.pipeline.terrain.cell_max.max() < 0.01, timeout=5000)
