@@ -126,19 +126,34 @@ def test_opening_a_built_in_scene_replaces_terrain_cameras_and_patch(window, qtb
 def test_project_saved_and_reopened_restores_the_parameters(window, qtbot, tmp_path, monkeypatch):
     from PySide6.QtWidgets import QMessageBox
 
+    from core.lod_edit import set_field
+
     path = tmp_path / "mine.sward"
     window.panel.param("density").setValue(0.6)
+    window.maps.write("color", 0, 0, np.tile([0.9, 0.8, 0.1, 0.8], (128, 256, 1)))  # painted
+    lod = set_field(window.lods[0], 0, "end", 4.5)
+    window.lod_panel.lod_edited.emit(0, lod)
     assert window.isWindowModified()
+    wait_for_slices(window, qtbot)
+    saved_image = grab(window)
     assert window.projects.save_as(path)
     assert not window.isWindowModified()
     saved_params = window.design.params
     window.panel.param("density").setValue(0.3)
     monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
+    camera = window.viewport.camera
     assert window.projects.open(path)
     assert window.design.density == pytest.approx(0.6)
     assert window.design.params == saved_params
+    assert window.lods[0] == lod
     assert str(path.resolve()) in window.projects.recent()
     assert [a.text() for a in window.recent_menu.actions()] == [str(path.resolve())]
+    window.viewport.set_camera(camera)
+    qtbot.waitUntil(lambda: window.patch is not None and window.patch.params == saved_params)
+    wait_for_slices(window, qtbot)
+    image = grab(window)
+    assert abs(coverage(image) - coverage(saved_image)) < 0.01
+    assert np.abs(image.mean(axis=(0, 1)) - saved_image.mean(axis=(0, 1))).max() < 1.0
 
 
 def test_a_corrupt_project_gives_a_message_and_keeps_the_open_one(window, tmp_path, monkeypatch):
