@@ -39,22 +39,23 @@ from widgets.viewport import GrassViewport
 
 
 class _Done(QObject):
-    finished = Signal(int, object)  # request id, GrassPatch
+    finished = Signal(int, int, object)  # grass type, request id, GrassPatch
 
 
 class _Generate(QRunnable):
-    def __init__(self, request: int, params: PatchParams, done: _Done) -> None:
+    def __init__(self, kind: int, request: int, params: PatchParams, done: _Done) -> None:
         super().__init__()
-        self.request, self.params, self.done = request, params, done
+        self.kind, self.request, self.params, self.done = kind, request, params, done
 
     def run(self) -> None:
-        self.done.finished.emit(self.request, generate_patch(self.params))
+        self.done.finished.emit(self.kind, self.request, generate_patch(self.params))
 
 
 class PatchBuilder(QObject):
-    """Generates patches off the GUI thread; only the newest request is delivered."""
+    """Generates patches off the GUI thread; only the newest request per grass type is
+    delivered."""
 
-    ready = Signal(object)  # GrassPatch
+    ready = Signal(int, object)  # grass type, GrassPatch
     busy = Signal(bool)
 
     def __init__(self, parent=None) -> None:
@@ -63,17 +64,19 @@ class PatchBuilder(QObject):
         self.pool.setMaxThreadCount(1)
         self._done = _Done()
         self._done.finished.connect(self._on_finished, Qt.ConnectionType.QueuedConnection)
-        self._latest = 0
+        self._count = 0
+        self._latest: dict[int, int] = {}
 
-    def request(self, params: PatchParams) -> None:
-        self._latest += 1
+    def request(self, params: PatchParams, kind: int = 0) -> None:
+        self._count += 1
+        self._latest[kind] = self._count
         self.busy.emit(True)
-        self.pool.start(_Generate(self._latest, params, self._done))
+        self.pool.start(_Generate(kind, self._count, params, self._done))
 
-    def _on_finished(self, request: int, patch: GrassPatch) -> None:
-        if request == self._latest:
+    def _on_finished(self, kind: int, request: int, patch: GrassPatch) -> None:
+        if request == self._latest.get(kind):
             self.busy.emit(False)
-            self.ready.emit(patch)
+            self.ready.emit(kind, patch)
 
     def wait(self) -> None:
         self.pool.waitForDone()
@@ -95,6 +98,7 @@ class DesignerWindow(QMainWindow):
         self.scene = scene
         self.setWindowTitle(f"Sward — {scene.name}[*]")
         self.design = PatchDesign(scene.params, scene.density, scene.slices)
+        self.designs = self._grass_designs(scene)  # blade parameters per grass type
         self.undo_stack = QUndoStack(self)
         self.history_cap = commands.MEMORY_CAP
         self.builder = PatchBuilder(self)
@@ -117,6 +121,7 @@ class DesignerWindow(QMainWindow):
         self.setCentralWidget(self.viewport)
 
         self.panel = PatchPanel(self.design)
+        self.panel.set_grass_types(self.lods.names)
         dock = self._dock("Patch", self.panel, "patch-dock")
         dock.setMinimumWidth(330)
         self.lod_panel = LodPanel(self.lods)
@@ -149,6 +154,7 @@ class DesignerWindow(QMainWindow):
         self.panel.density_edited.connect(self._push_density)
         self.panel.slices_edited.connect(self._push_slices)
         self.design.params_changed.connect(self.builder.request)
+        self.panel.grass_type_changed.connect(self._on_grass_type_chosen)
         self.design.density_changed.connect(self.viewport.set_density)
         self.design.slices_changed.connect(self.viewport.set_slice_params)
         self.viewport.slices.progress.connect(self._on_conversion)
@@ -394,6 +400,9 @@ class DesignerWindow(QMainWindow):
             self.design.density = scene.density
             self.design.slices = scene.slices
             self.design.params = scene.params
+            self.designs = self._grass_designs(scene)
+            self.panel.set_grass_types(self.lods.names)
+            self.panel.set_blade_model(self.design)
         finally:
             QApplication.restoreOverrideCursor()
 
@@ -409,8 +418,9 @@ class DesignerWindow(QMainWindow):
             )
 
     def _push_params(self, params: PatchParams) -> None:
-        if params != self.design.params:
-            self.push(commands.set_params(self.design, params))
+        model = self.panel.blades
+        if params != model.params:
+            self.push(commands.set_params(model, params))
 
     def _push_slices(self, slices: SliceParams) -> None:
         if slices != self.design.slices:
@@ -421,7 +431,23 @@ class DesignerWindow(QMainWindow):
             self.push(commands.set_density(self.design, density))
 
     # -- results -----------------------------------------------------------------------------
-    def _on_patch_ready(self, patch: GrassPatch) -> None:
+    def _grass_designs(self, scene: Scene) -> list[PatchDesign]:
+        """The first grass type's design, then one per further type (only its blades: density
+        and slices are the scene's)."""
+        designs = [self.design]
+        for i, kind in enumerate(scene.grass, start=1):
+            design = PatchDesign(kind.params)
+            design.params_changed.connect(lambda p, i=i: self.builder.request(p, i))
+            designs.append(design)
+        return designs
+
+    def _on_grass_type_chosen(self, index: int) -> None:
+        self.panel.set_blade_model(self.designs[index])
+
+    def _on_patch_ready(self, kind: int, patch: GrassPatch) -> None:
+        if kind:
+            self.viewport.set_grass_patch(kind, patch)
+            return
         self.patch = patch
         self.viewport.set_patch(patch)
 

@@ -33,7 +33,8 @@ class ProjectActions(QObject):
             stack=w.maps.stack,
             lod=w.lods[0],
             grass=tuple(
-                dataclasses.replace(kind, lod=w.lods[i + 1]) for i, kind in enumerate(w.scene.grass)
+                dataclasses.replace(kind, lod=w.lods[i + 1], params=w.designs[i + 1].params)
+                for i, kind in enumerate(w.scene.grass)
             ),
         )
 

@@ -123,6 +123,11 @@ class FramePipeline:
         self.lod = lod
         self._convert()
 
+    def set_layer_patch(self, index: int, patch: GrassPatch) -> None:
+        """A new patch for one grass type (0: the designed patch)."""
+        self.layers[index].geometry.set_patch(patch)
+        self._convert()
+
     def set_layer_lod(self, index: int, lod: LodConfig) -> None:
         """The LOD levels of one grass type (0: the designed patch), patch and slices kept."""
         self.layers[index].lod = lod

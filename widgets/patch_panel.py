@@ -73,15 +73,24 @@ def _field_param(f: dataclasses.Field, value) -> dict:
 
 
 class PatchPanel(QWidget):
-    params_edited = Signal(object)  # PatchParams
+    params_edited = Signal(object)  # PatchParams of the grass type shown (self.blades)
+    grass_type_changed = Signal(int)
     density_edited = Signal(float)
     slices_edited = Signal(object)  # SliceParams
 
     def __init__(self, design: PatchDesign, parent=None) -> None:
         super().__init__(parent)
-        self.design = design
+        self.design = design  # density and slices; blade parameters of the first grass type
+        self.blades = design  # the grass type whose blade parameters are shown
         fields = dataclasses.fields(PatchParams)
         children = [
+            {
+                "name": "grass_type",
+                "title": "Grass type",
+                "type": "list",
+                "limits": {"main grass": 0},
+                "value": 0,
+            },
             {
                 "name": "preset",
                 "title": "Preset",
@@ -133,8 +142,28 @@ class PatchPanel(QWidget):
                 return name
         return CUSTOM
 
+    def set_grass_types(self, names: list[str]) -> None:
+        self._updating = True
+        try:
+            param = self.root.child("grass_type")
+            param.setLimits({name: i for i, name in enumerate(names)})
+            param.setValue(0)
+            param.setOpts(visible=len(names) > 1)
+        finally:
+            self._updating = False
+
+    def set_blade_model(self, model: PatchDesign) -> None:
+        """Show and edit the blade parameters of another grass type."""
+        if model is self.blades:
+            return
+        self.blades.params_changed.disconnect(self._on_params_changed)
+        self.blades = model
+        model.params_changed.connect(self._on_params_changed)
+        self.message.setText("")
+        self._show(model.params)
+
     def param(self, name: str) -> Parameter:
-        if name in ("preset", "density"):
+        if name in ("preset", "density", "grass_type"):
             return self.root.child(name)
         if name in ("slices", "slice_size", "top"):
             return self.root.child("conversion", name)
@@ -148,7 +177,9 @@ class PatchPanel(QWidget):
             if change != "value":
                 continue
             name = param.name()
-            if name == "preset":
+            if name == "grass_type":
+                self.grass_type_changed.emit(int(value))
+            elif name == "preset":
                 if value in PRESETS:
                     self.params_edited.emit(PRESETS[value])
             elif name == "density":
@@ -165,10 +196,10 @@ class PatchPanel(QWidget):
         if isinstance(value, QColor):
             value = (round(value.redF(), 4), round(value.greenF(), 4), round(value.blueF(), 4))
         try:
-            params = self.design.params.replace(**{name: value})
+            params = self.blades.params.replace(**{name: value})
         except ParameterError as exc:
             self.message.setText(str(exc))
-            self._show(self.design.params)  # revert the control to the model
+            self._show(self.blades.params)  # revert the control to the model
             return
         self.message.setText("")
         self.params_edited.emit(params)
@@ -207,7 +238,7 @@ class PatchPanel(QWidget):
             self._updating = False
 
     def closeEvent(self, event) -> None:
-        self.design.params_changed.disconnect(self._on_params_changed)
+        self.blades.params_changed.disconnect(self._on_params_changed)
         self.design.density_changed.disconnect(self._on_density_changed)
         self.design.slices_changed.disconnect(self._on_slices_changed)
         super().closeEvent(event)

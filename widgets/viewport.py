@@ -128,6 +128,13 @@ class GrassViewport(QOpenGLWidget):
         self.slices.schedule()  # a new volume level may need slices of another count
         self.update()
 
+    def set_grass_patch(self, index: int, patch: GrassPatch) -> None:
+        """A new patch for a further grass type (1 …); its slices are converted again."""
+        _, lod, channel = self._grass_types[index - 1]
+        self._grass_types[index - 1] = (patch, lod, channel)
+        self._upload(lambda pipeline: pipeline.set_layer_patch(index, patch))
+        self.slices.schedule()
+
     def set_layer_lod(self, index: int, lod: LodConfig) -> None:
         """The LOD levels of one grass type (0: the designed patch)."""
         if index == 0:

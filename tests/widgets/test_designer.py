@@ -256,3 +256,32 @@ def test_a_bookmarked_view_is_in_the_camera_menu_and_the_saved_project(window, t
     assert np.allclose(spec.eye, vp.camera.eye, atol=1e-5)
     window.undo_stack.undo()
     assert "over the hill" not in window.scene.cameras
+
+
+def test_each_grass_type_has_its_own_blades(window, qtbot, tmp_path):
+    import dataclasses
+
+    from app.project import load_project
+    from app.scenes import GrassType
+    from core.lod import LodConfig
+
+    first = window.scene.params
+    clumps = GrassType("clumps", first.replace(blade_count=300, seed=9), LodConfig.zones(), 1)
+    window.open_scene(dataclasses.replace(window.scene, grass=(clumps,)))
+    qtbot.waitUntil(lambda: window.patch is not None and window.patch.params == first)
+    panel = window.panel
+    panel.param("grass_type").setValue(1)
+    assert panel.blades is window.designs[1]
+    assert panel.param("blade_count").value() == 300
+    panel.param("blade_count").setValue(700)
+    assert window.designs[1].params.blade_count == 700
+    assert window.design.params == first  # the first type keeps its blades
+    layer = window.viewport.pipeline.layers[1]
+    qtbot.waitUntil(lambda: layer.patch.params.blade_count == 700, timeout=20000)
+    assert window.projects.save_as(tmp_path / "two.sward")
+    assert load_project(tmp_path / "two.sward").grass[0].params.blade_count == 700
+    window.undo_stack.undo()
+    assert window.designs[1].params.blade_count == 300
+    assert panel.param("blade_count").value() == 300
+    panel.param("grass_type").setValue(0)
+    assert panel.param("blade_count").value() == first.blade_count
