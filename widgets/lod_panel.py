@@ -26,8 +26,16 @@ from core.params import SLICE_COUNTS
 from core.stats import FrameStats
 
 COLUMNS = ("representation", "slices", "begin", "end", "macro", "instances")
+HEADERS = ("Drawn as", "Slices", "Begin", "End", "Macro", "Count")
 MACROS = (1, 2, 4, 8, 16, 32, 64, 128, 256, 512)
-HORIZON = 100000.0  # the end spin box of the last level shows "horizon"
+HORIZON = 100000.0
+WIDTHS = (
+    92,
+    48,
+    62,
+    62,
+    56,
+)  # pixels: representation, slices, begin, end, macro  # the end spin box of the last level shows "horizon"
 
 
 class LodPanel(QWidget):
@@ -40,10 +48,12 @@ class LodPanel(QWidget):
         self.type_box = QComboBox()
         self.type_box.currentIndexChanged.connect(self.refresh)
         self.table = QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels([c.capitalize() for c in COLUMNS])
+        self.table.setHorizontalHeaderLabels(list(HEADERS))
+        self.table.horizontalHeaderItem(5).setToolTip("instances (cells, macro-cells) drawn")
         self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
         self.table.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
         self.table.verticalHeader().setVisible(False)
+        self.table.horizontalHeader().setMinimumSectionSize(36)
         buttons = QHBoxLayout()
         self.add_button = QPushButton("Add")
         self.remove_button = QPushButton("Remove")
@@ -141,6 +151,7 @@ class LodPanel(QWidget):
         macro.addItems([str(m) for m in MACROS])
         macro.currentTextChanged.connect(lambda v, i=i: self._field(i, "macro", int(v)))
         for column, widget in enumerate((rep, slices, begin, end, macro)):
+            widget.setMaximumWidth(WIDTHS[column])  # the table fits a docked panel
             self.table.setCellWidget(i, column, widget)
         self.table.setItem(i, 5, QTableWidgetItem("–"))
 
