@@ -32,6 +32,7 @@ from render.image import ImageRenderer
 from render.layer import GrassLayer
 from render.overlay import OverlayRenderer
 from render.props import PropRenderer
+from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
@@ -39,6 +40,7 @@ from render.volume import VolumeRenderer
 # "lod": zones by distance; "compare": the three side by side (the thesis's viewer tool);
 # otherwise one representation draws every cell
 MODES = ("geometry", "volume", "image", "lod", "compare")
+PREVIEW_SCALE = 2  # preview frames are drawn at 1 / 2 of the width and height
 SINGLE = ("geometry", "volume", "image")
 
 
@@ -64,6 +66,9 @@ class FramePipeline:
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
+        self._preview: moderngl.Framebuffer | None = None  # half-resolution frames
+        self._present_vao: moderngl.VertexArray | None = None
+        self._present_vbo: moderngl.Buffer | None = None
 
     # -- the first grass type, as the designer and the tests reach it -------------------------
     @property
@@ -232,14 +237,20 @@ class FramePipeline:
     ) -> FrameStats:
         """Draw one frame into `out` (size w × h) and return its statistics.
 
-        `preview` draws without multisampling (no alpha-to-coverage, harder blade edges), several
-        times faster on llvmpipe: the viewport uses it while the camera is being dragged.
+        `preview` draws at half the resolution without multisampling (no alpha-to-coverage,
+        harder blade edges) and scales the frame up: several times faster on llvmpipe, for the
+        viewport while the camera or the brush moves.
         """
         ctx = self.ctx
         w, h = size
         stats = FrameStats(width=w, height=h)
         t0 = time.perf_counter()
-        fbo = self._target(size, 0 if preview else self.samples)
+        if preview:
+            dw, dh = max(1, w // PREVIEW_SCALE), max(1, h // PREVIEW_SCALE)
+            fbo = self._preview_target((dw, dh))
+        else:
+            dw, dh = w, h
+            fbo = self._target(size, self.samples)
         fbo.use()
         sky = self.lighting.sky_color
         fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
@@ -247,22 +258,51 @@ class FramePipeline:
             ctx.finish()
         stats.t_o_ms = (time.perf_counter() - t0) * 1000.0
         if self.only == "compare":  # three columns, one representation each
-            edges = [round(w * k / 3) for k in range(4)]
+            edges = [round(dw * k / 3) for k in range(4)]
             for k, mode in enumerate(SINGLE):
-                region = (edges[k], 0, edges[k + 1] - edges[k], h)
+                region = (edges[k], 0, edges[k + 1] - edges[k], dh)
                 self._draw(camera, region, mode, stats, measure)
         else:
-            self._draw(camera, (0, 0, w, h), self.only, stats, measure)
+            self._draw(camera, (0, 0, dw, dh), self.only, stats, measure)
         t1 = time.perf_counter()
-        ctx.viewport = (0, 0, w, h)
-        _opaque_alpha(fbo)
-        ctx.copy_framebuffer(out, fbo)
+        if preview:
+            self._present(fbo, out, size)
+        else:
+            ctx.viewport = (0, 0, w, h)
+            _opaque_alpha(fbo)
+            ctx.copy_framebuffer(out, fbo)
         if measure:
             ctx.finish()
         end = time.perf_counter()
         stats.t_o_ms += (end - t1) * 1000.0
         stats.t_a_ms = (end - t0) * 1000.0
         return stats
+
+    def _preview_target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
+        """A single-sampled frame with a texture to scale up (one size kept)."""
+        if self._preview is None or self._preview.size != size:
+            if self._preview is not None:
+                _release_fbo(self._preview)
+            color = self.ctx.texture(size, 4)
+            color.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            self._preview = self.ctx.framebuffer(color, self.ctx.depth_renderbuffer(size))
+        return self._preview
+
+    def _present(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size) -> None:
+        if self._present_vao is None:
+            program = load_program(self.ctx, "present.glsl")
+            corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)
+            self._present_vbo = self.ctx.buffer(corners.tobytes())
+            self._present_vao = self.ctx.vertex_array(
+                program, [(self._present_vbo, "2f", "in_corner")]
+            )
+            program["u_frame"].value = 0
+        out.use()
+        self.ctx.viewport = (0, 0, *size)
+        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
+        fbo.color_attachments[0].use(0)
+        self._present_vao.render(moderngl.TRIANGLE_STRIP)
+        self.ctx.enable(moderngl.DEPTH_TEST)
 
     def _draw(
         self,
@@ -344,6 +384,11 @@ class FramePipeline:
         for fbo in self._targets.values():
             _release_fbo(fbo)
         self._targets.clear()
+        if self._preview is not None:
+            _release_fbo(self._preview)
+        for obj in (self._present_vao, self._present_vbo):
+            if obj is not None:
+                obj.release()
 
 
 def _passes(renderer, frame: FrameUniforms) -> None:

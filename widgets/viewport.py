@@ -2,7 +2,8 @@
 
 Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
 W A S D move and Q E sink and rise. Frames are drawn on demand (after an edit or a camera move);
-while the camera moves they are drawn without MSAA (preview), then once more at full quality.
+while the camera or the brush moves they are drawn at half resolution without MSAA (preview),
+then once more at full quality.
 """
 
 from __future__ import annotations

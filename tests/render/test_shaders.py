@@ -42,6 +42,7 @@ EXPECTED = {
     },
     "ground.glsl": {"u_view_proj", "u_extent", "u_grass_rect", "u_design", "in_corner"},
     "overlay.glsl": {"u_view_proj", "u_color", "in_position"},
+    "present.glsl": {"u_frame", "in_corner"},
     "props.glsl": {"u_view_proj", "u_light_dir", "in_position", "in_centre", "in_size"},
 }
 
