@@ -19,13 +19,14 @@ from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
 from core.lod import LodConfig
+from core.occupancy import DensityOccupancy
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from core.terrain import Terrain
 from render.context import release_framebuffer
 from render.conversion import PatchConverter
-from render.design_maps import DesignMapTextures
+from render.design_maps import DesignMapTextures, union
 from render.geometry import GeometryRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
@@ -62,6 +63,11 @@ class FramePipeline:
         self._converter: PatchConverter | None = None
         self.lighting = Lighting()
         self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
+        # cells without grass per grass type, skipped before drawing (core/occupancy.py)
+        self._occupancy: DensityOccupancy | None = None
+        self.skip_bare_cells = True
+        self._density_dirty: tuple[int, int, int, int] | None = None
+        self.design.maps.changed.connect(self._on_map_changed)
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
         self.culling = True
@@ -185,8 +191,31 @@ class FramePipeline:
 
     def set_design_maps(self, maps: DesignMaps) -> None:
         """The design-map stack every renderer samples; later edits upload their rectangles."""
+        self.design.maps.changed.disconnect(self._on_map_changed)
         self.design.release()
         self.design = DesignMapTextures(self.ctx, maps)
+        maps.changed.connect(self._on_map_changed)
+        self._occupancy = None
+
+    def _on_map_changed(self, name: str, rect) -> None:
+        if name == "density" and self._occupancy is not None:
+            self._density_dirty = union(self._density_dirty, rect)
+
+    def occupancy(self) -> DensityOccupancy | None:
+        """Which cells can show grass of each type, brought up to date with the density map."""
+        if self.terrain is None or not self.skip_bare_cells:
+            return None
+        t = self.terrain
+        if self._occupancy is None or (self._occupancy.columns, self._occupancy.rows) != (
+            t.columns,
+            t.rows,
+        ):
+            self._occupancy = DensityOccupancy(t.columns, t.rows, self.design.maps.layer("density"))
+            self._density_dirty = None
+        elif self._density_dirty is not None:
+            self._occupancy.update(self.design.maps.layer("density"), self._density_dirty)
+            self._density_dirty = None
+        return self._occupancy
 
     def set_terrain(self, terrain: Terrain) -> None:
         """Cells from a terrain's quadtree: every frame one traversal selects, culls and groups
@@ -342,11 +371,20 @@ class FramePipeline:
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
+        tq = time.perf_counter()
+        occupancy = self.occupancy()
+        stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         drawn = []
         for index, layer in enumerate(self.layers):
             tq = time.perf_counter()
             batches = layer.batches(
-                mode, camera, w / max(h, 1), self.terrain, frustum, self.slice_params.slices
+                mode,
+                camera,
+                w / max(h, 1),
+                self.terrain,
+                frustum,
+                self.slice_params.slices,
+                occupancy,
             )
             stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
             drawn.append(batches)
@@ -378,6 +416,7 @@ class FramePipeline:
         self.ground.release()
         self.props.release()
         self.overlay.release()
+        self.design.maps.changed.disconnect(self._on_map_changed)
         self.design.release()
         if self._converter is not None:
             self._converter.release()

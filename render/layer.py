@@ -12,6 +12,7 @@ from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lod import LodConfig, LodLevel
 from core.lod import select as lod_select
+from core.occupancy import DensityOccupancy
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.terrain import Terrain
@@ -133,6 +134,7 @@ class GrassLayer:
         terrain: Terrain | None,
         frustum: Frustum | None,
         slices: int,
+        occupancy: DensityOccupancy | None = None,
     ) -> dict[tuple[str, int], tuple[object, int]]:
         """(representation, slices) → (renderer, instance count) for one view. In LOD mode the cells of every level are selected by distance and levels
         that share a renderer are drawn in one call; otherwise one representation draws every
@@ -143,6 +145,8 @@ class GrassLayer:
             config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
         if terrain is not None:
             parts = traverse(terrain, camera.eye, config, frustum).levels
+            if occupancy is not None:  # (macro-)cells where this type's density map is zero
+                parts = [part[self._grows(part, terrain, occupancy)] for part in parts]
         elif mode == "lod":
             parts = lod_select(self._instances, camera.eye, config)
         else:
@@ -160,6 +164,12 @@ class GrassLayer:
             renderer.set_instances(cells)
             batches[key] = (renderer, int(cells.size))
         return batches
+
+    def _grows(self, cells: np.ndarray, terrain: Terrain, occupancy: DensityOccupancy):
+        ix = np.rint(cells["origin"][:, 0] - terrain.origin[0])
+        iz = np.rint(cells["origin"][:, 1] - terrain.origin[1])
+        sx, sz = np.rint(cells["size"][:, 0]), np.rint(cells["size"][:, 1])
+        return occupancy.occupied(self.density_channel, ix, iz, sx, sz)
 
     def release(self) -> None:
         for renderer in self.renderers:

@@ -1,0 +1,79 @@
+"""Which cells can show grass of each type (thesis 6.4.1, 6.4.5): a cell whose density-map
+samples are all zero draws nothing in any representation, so a grass type skips it — and any
+macro-cell made only of such cells — before its instances reach the GPU. Bare paths and the
+sparse clumps of a second grass type then cost nothing.
+
+The map is sampled bilinearly (GL_LINEAR, clamp to edge): a sample inside a cell mixes the
+texels whose centres lie within one texel of the cell, so a cell is occupied when the map
+dilated by one texel has a non-zero value at a texel centre inside the cell (or, for a cell
+narrower than a texel, at the nearest one). Edits update only the cells their rectangle can
+reach; an integral image answers "any occupied cell in this rectangle" per instance in O(1).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+Rect = tuple[int, int, int, int]  # x (column), y (row), width, height in texels
+
+
+def _dilate(a: np.ndarray) -> np.ndarray:
+    """3 × 3 maximum over the first two axes, edges repeated (clamp to edge)."""
+    p = np.pad(a, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    rows = np.maximum(np.maximum(p[:-2], p[1:-1]), p[2:])
+    return np.maximum(np.maximum(rows[:, :-2], rows[:, 1:-1]), rows[:, 2:])
+
+
+def _starts(cells: int, texels: int) -> np.ndarray:
+    """First texel whose centre lies at or after each cell's start (cells + 1 entries)."""
+    c = np.arange(cells + 1)
+    return np.clip(np.ceil(c * texels / cells - 0.5).astype(np.int64), 0, texels)
+
+
+class DensityOccupancy:
+    def __init__(self, columns: int, rows: int, density: np.ndarray) -> None:
+        """density: the density map (rows, columns, channels) of the design stack."""
+        self.columns, self.rows = columns, rows
+        self.channels = density.shape[2]
+        self.cell_max = np.zeros((self.channels, columns, rows), np.float32)
+        self.integral = np.zeros((self.channels, columns + 1, rows + 1), np.int32)
+        self.update(density)
+
+    def update(self, density: np.ndarray, rect: Rect | None = None) -> None:
+        """Recompute the cells an edit of `rect` (the whole map if None) can reach."""
+        h, w = density.shape[:2]
+        sx, sz = _starts(self.columns, w), _starts(self.rows, h)
+        if rect is None:
+            c0, c1, r0, r1 = 0, self.columns, 0, self.rows
+        else:
+            x, y, rw, rh = rect  # texels reach cells up to 1.5 texels away (bilinear)
+            c0 = max(math.floor((x - 1.5) * self.columns / w), 0)
+            c1 = min(math.ceil((x + rw + 1.5) * self.columns / w), self.columns)
+            r0 = max(math.floor((y - 1.5) * self.rows / h), 0)
+            r1 = min(math.ceil((y + rh + 1.5) * self.rows / h), self.rows)
+            if c1 <= c0 or r1 <= r0:
+                return
+        tx0, tx1 = max(sx[c0] - 1, 0), min(sx[c1] + 1, w)  # one texel margin for the dilation
+        tz0, tz1 = max(sz[r0] - 1, 0), min(sz[r1] + 1, h)
+        block = _dilate(np.asarray(density[tz0:tz1, tx0:tx1], np.float32))
+        ix = np.clip(sx[c0:c1] - tx0, 0, block.shape[1] - 1)
+        iz = np.clip(sz[r0:r1] - tz0, 0, block.shape[0] - 1)
+        # a cell's texels run from its start to the next cell's start; an empty range (a cell
+        # narrower than a texel) gives the texel at its start, the nearest centre after it
+        along_x = np.maximum.reduceat(block[:, : max(sx[c1] - tx0, 1)], ix, axis=1)
+        cells = np.maximum.reduceat(along_x[: max(sz[r1] - tz0, 1)], iz, axis=0)
+        self.cell_max[:, c0:c1, r0:r1] = np.transpose(cells, (2, 1, 0))
+        occupied = (self.cell_max > 0.0).astype(np.int32)
+        self.integral[:, 1:, 1:] = occupied.cumsum(axis=1).cumsum(axis=2)
+
+    def occupied(self, channel: int, ix, iz, sx, sz) -> np.ndarray:
+        """Whether any cell of the sx × sz (macro-)cells starting at (ix, iz) can show grass
+        of the type whose density channel is `channel`."""
+        ix, iz = np.asarray(ix, np.int64), np.asarray(iz, np.int64)
+        x1 = np.clip(ix + np.asarray(sx, np.int64), 0, self.columns)
+        z1 = np.clip(iz + np.asarray(sz, np.int64), 0, self.rows)
+        x0, z0 = np.clip(ix, 0, self.columns), np.clip(iz, 0, self.rows)
+        s = self.integral[channel]
+        return (s[x1, z1] - s[x0, z1] - s[x1, z0] + s[x0, z0]) > 0
