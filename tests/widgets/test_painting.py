@@ -274,3 +274,29 @@ def test_painting_height_raises_the_ground_and_the_terrain_follows(window, qtbot
     qtbot.waitUntil(lambda: vp.pipeline.terrain.cell_max.max() > 0.9, timeout=5000)
     window.undo_stack.undo()
     qtbot.waitUntil(lambda: vp.pipeline.terrain.cell_max.max() < 0.01, timeout=5000)
+
+
+def test_the_painting_shortcuts_people_know(window, qtbot):
+    vp = window.viewport
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    vp.setFocus()
+    panel = window.paint_panel
+    size, strength = panel.size_box.value(), panel.strength_box.value()
+    QTest.keyClick(vp, Qt.Key.Key_B)
+    assert vp.tool == "paint" and window.paint_action.isChecked()
+    QTest.keyClick(vp, Qt.Key.Key_BracketRight)
+    assert panel.size_box.value() > size and vp.brush_size == panel.size_box.value()
+    QTest.keyClick(vp, Qt.Key.Key_BracketLeft)
+    QTest.keyClick(vp, Qt.Key.Key_BracketLeft)
+    assert panel.size_box.value() < size
+    QTest.keyClick(vp, Qt.Key.Key_Minus)
+    assert panel.strength_box.value() == pytest.approx(strength - 0.1)
+    QTest.keyClick(vp, Qt.Key.Key_Equal)
+    assert panel.strength_box.value() == pytest.approx(strength)
+    QTest.keyClick(vp, Qt.Key.Key_I)
+    assert window.painter.eyedropper
+    QTest.keyClick(vp, Qt.Key.Key_P)
+    assert window.overlay.isVisible()
+    QTest.keyClick(vp, Qt.Key.Key_B)
+    assert vp.tool == "camera"
