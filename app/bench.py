@@ -16,6 +16,7 @@ SUITES = (
     "traversal",
     "lod_speedup",
     "brush",
+    "preview",
 )
 MODULES = {"techniques": "representations"}
 

@@ -1,0 +1,60 @@
+"""The designer's interactive frames: the default scene (meadow, default camera, 950 × 720 —
+the viewport of a 1200 × 760 window) drawn at full quality and as the preview the viewport
+draws while the camera or the brush moves (half resolution, no MSAA), and the instances the
+bare-cell skipping saves. Medians of several frames; compare the ratio, not the times.
+
+Run: `sward bench --suite preview --out results.json`.
+"""
+
+from __future__ import annotations
+
+import statistics
+
+SIZE = (950, 720)
+
+
+def preview(runs: int = 3) -> list[dict]:
+    from app.headless import HeadlessRenderer
+    from app.scenes import get_scene
+
+    scene = get_scene("meadow")
+    renderer = HeadlessRenderer()
+    renderer.pipeline.set_lod(scene.lod)
+    renderer.pipeline.set_only("lod")
+    renderer.load(scene)
+    camera = scene.camera()
+    out = renderer._target(SIZE)
+    rows = []
+    times = {}
+    for skip in (True, False):
+        renderer.pipeline.skip_bare_cells = skip
+        for preview in (False, True):
+            renderer.pipeline.render(camera, out, SIZE, preview=preview)  # warm-up
+            frames = [
+                renderer.pipeline.render(camera, out, SIZE, measure=True, preview=preview)
+                for _ in range(runs)
+            ]
+            name = f"meadow_{'preview' if preview else 'full'}{'' if skip else '_no_skip'}"
+            times[name] = statistics.median(f.t_a_ms for f in frames)
+            last = frames[-1]
+            rows.append(
+                {
+                    "name": name,
+                    "median_ms": times[name],
+                    "t_v_ms": statistics.median(f.t_v_ms for f in frames),
+                    "instances": last.c_g + last.c_v + last.c_i,
+                }
+            )
+    rows.append(
+        {
+            "name": "preview_speedup",
+            "ratio": times["meadow_full"] / times["meadow_preview"],
+            "skip_speedup_full": times["meadow_full_no_skip"] / times["meadow_full"],
+        }
+    )
+    renderer.release()
+    return rows
+
+
+def run() -> list[dict]:
+    return preview()
