@@ -152,11 +152,10 @@ class Stroke:
         mw, mh = self.maps.size
         bx0, by0, bx1, by1 = max(x0 - 1, 0), max(y0 - 1, 0), min(x1 + 1, mw), min(y1 + 1, mh)
         region = np.pad(self._read(bx0, by0, bx1, by1), ((1, 1), (1, 1), (0, 0)), mode="edge")
-        sums = sum(
-            region[dy : dy + region.shape[0] - 2, dx : dx + region.shape[1] - 2]
-            for dy in range(3)
-            for dx in range(3)
-        )
+        sums = np.zeros_like(region[1:-1, 1:-1])
+        for dy in range(3):
+            for dx in range(3):  # nine shifted views, each a whole-array add
+                sums += region[dy : dy + region.shape[0] - 2, dx : dx + region.shape[1] - 2]
         mean = sums / 9.0
         return mean[y0 - by0 : y0 - by0 + (y1 - y0), x0 - bx0 : x0 - bx0 + (x1 - x0)]
 

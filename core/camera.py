@@ -42,6 +42,10 @@ def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> np.
     return m.astype(np.float32)
 
 
+def _vec3(v) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
 def gl_bytes(m: np.ndarray) -> bytes:
     """Bytes of a 4×4 matrix in the column-major order GLSL expects."""
     return np.ascontiguousarray(m.T, dtype=np.float32).tobytes()
@@ -73,9 +77,7 @@ class Camera:
             raise ValueError("camera eye and target are the same point")
         pitch = float(np.degrees(np.arcsin(np.clip(d[1] / dist, -1, 1))))
         yaw = float(np.degrees(np.arctan2(d[0], d[2])))
-        return cls(
-            target=tuple(float(x) for x in target), yaw=yaw, pitch=pitch, distance=dist, **kw
-        )
+        return cls(target=_vec3(target), yaw=yaw, pitch=pitch, distance=dist, **kw)
 
     @property
     def eye(self) -> np.ndarray:
@@ -101,7 +103,7 @@ class Camera:
         v = self.view()
         right, up = v[0, :3].astype(np.float64), v[1, :3].astype(np.float64)
         shift = (right * dx + up * dy) * self.distance
-        self.target = tuple(float(x) for x in np.asarray(self.target) + shift)
+        self.target = _vec3(np.asarray(self.target) + shift)
 
     def fly(self, forward: float, strafe: float, rise: float = 0.0) -> None:
         """Move eye and target together along the horizontal view direction (WASD)."""
@@ -109,7 +111,7 @@ class Camera:
         ahead = -np.array([np.sin(yaw), 0.0, np.cos(yaw)])
         right = np.array([np.cos(yaw), 0.0, -np.sin(yaw)])
         shift = ahead * forward + right * strafe + np.array([0.0, rise, 0.0])
-        self.target = tuple(float(x) for x in np.asarray(self.target) + shift)
+        self.target = _vec3(np.asarray(self.target) + shift)
 
 
 def orthographic(left: float, right: float, bottom: float, top: float, near: float, far: float):

@@ -154,6 +154,7 @@ def classify(d: np.ndarray, config: LodConfig) -> list[tuple[np.ndarray, np.ndar
         lod[:] = (ALL_IN, 0.0)
         if i > 0:  # the far side of the transition from the previous level
             prev_end = levels[i - 1].end
+            assert prev_end is not None  # only the last level runs to the horizon
             band = d < prev_end
             lod[band, 0] = weight_near(d[band], level.begin, prev_end)
             lod[band, 1] = 1.0

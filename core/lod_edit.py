@@ -56,7 +56,9 @@ def append_level(config: LodConfig) -> LodConfig:
     fully taken over; the new level draws what the last one drew."""
     levels = list(config.levels)
     last = levels[-1]
-    start = max(last.begin, levels[-2].end if len(levels) > 1 else 0.0)  # type: ignore[type-var]
+    before = levels[-2].end if len(levels) > 1 else 0.0
+    assert before is not None  # only the last level runs to the horizon
+    start = max(last.begin, before)
     span = max(0.5 * start, 4.0)
     begin = start + span
     levels[-1] = dataclasses.replace(last, end=begin + 0.5 * span)

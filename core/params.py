@@ -87,7 +87,9 @@ class PatchParams:
         unknown = set(data) - set(known)
         if unknown:
             raise ParameterError(f"unknown patch parameter(s): {', '.join(sorted(unknown))}")
-        clean = {k: tuple(v) if k.endswith("_color") else v for k, v in data.items()}
+        clean: dict[str, Any] = {
+            k: tuple(v) if k.endswith("_color") else v for k, v in data.items()
+        }
         return cls(**clean)
 
     @staticmethod

@@ -73,7 +73,8 @@ class QuadTree:
         return int(sum(a.nbytes for a in self.y_min) + sum(a.nbytes for a in self.y_max))
 
     def shape(self, level: int) -> tuple[int, int]:
-        return self.y_min[level].shape  # type: ignore[return-value]
+        rows, columns = self.y_min[level].shape
+        return rows, columns
 
     def extent(self, level: int, ix: np.ndarray, iz: np.ndarray):
         """Cell ranges [x0, x1) × [z0, z1) of nodes (ix, iz) of a level, clipped at the edges."""
