@@ -8,6 +8,25 @@ from app.designer import DesignerWindow
 from app.scenes import get_scene
 
 
+@pytest.fixture(autouse=True)
+def no_leaked_windows(request):
+    """A test leaves no window of its own open (napari / ndv do the same): dialogs it opened
+    are closed, windows it made are closed."""
+    if "qapp" not in request.fixturenames and "qtbot" not in request.fixturenames:
+        yield
+        return
+    from PySide6.QtWidgets import QApplication
+
+    before = set(QApplication.topLevelWidgets())
+    yield
+    leaked = [
+        w
+        for w in QApplication.topLevelWidgets()
+        if w not in before and w.isWindow() and w.isVisible()
+    ]
+    assert not leaked, f"windows left open: {[type(w).__name__ for w in leaked]}"
+
+
 @pytest.fixture
 def window(qtbot, tmp_path, monkeypatch):
     from PySide6.QtWidgets import QMessageBox
