@@ -113,7 +113,7 @@ def push(stack: QUndoStack, command: Command, cap: int = MEMORY_CAP) -> int:
     """Push a command; if the history then keeps more than `cap` bytes, forget its oldest
     steps (the newest step always stays). Returns how many steps were forgotten."""
     stack.push(command)
-    if history_bytes(stack) <= cap or stack.index() != stack.count():
+    if history_bytes(stack) <= cap:  # (a push leaves nothing to redo)
         return 0
     commands = [stack.command(i) for i in range(stack.count())]
     keep, total = 0, 0

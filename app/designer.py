@@ -118,7 +118,7 @@ class DesignerWindow(QMainWindow):
         self.builder.busy.connect(self._on_busy)
         self.viewport.frame_rendered.connect(self._on_frame)
         self.viewport.paint_pressed.connect(self.painter.press)
-        self.viewport.paint_moved.connect(self._paint_move)
+        self.viewport.paint_moved.connect(self.painter.move)
         self.viewport.paint_released.connect(self.painter.release)
         self.paint_panel.brush_changed.connect(self._on_brush_changed)
         self.painter.heights_changed.connect(self._rebuild_terrain)
@@ -313,9 +313,6 @@ class DesignerWindow(QMainWindow):
             if flat
             else ""
         )
-
-    def _paint_move(self, x: float, y: float) -> None:
-        self.painter.move(x, y)
 
     def _rebuild_terrain(self) -> None:
         """The terrain's bounding volumes and ground ranges follow a changed height map."""

@@ -14,7 +14,6 @@ from core.design_maps import DesignMaps
 
 class PaintController(QObject):
     heights_changed = Signal()  # after the height map settled (debounced)
-    picked = Signal(tuple)  # the eyedropper's values
 
     def __init__(self, window) -> None:
         super().__init__(window)
@@ -73,10 +72,6 @@ class PaintController(QObject):
         if stroke.layer == "height":
             self._heights.start()
 
-    @property
-    def painting(self) -> bool:
-        return self.stroke is not None
-
     # -- eyedropper --------------------------------------------------------------------------
     def start_eyedropper(self) -> None:
         self.eyedropper = True
@@ -92,7 +87,6 @@ class PaintController(QObject):
         if channel is not None:
             values = values[[max(channel, 0)]]  # all grass types: show the first one's
         self.panel.set_value(tuple(float(v) for v in values))
-        self.picked.emit(tuple(float(v) for v in values))
 
     # -- the height map moves the terrain ----------------------------------------------------
     def _on_map_changed(self, name: str, rect) -> None:
