@@ -246,6 +246,7 @@ class DesignerWindow(QMainWindow):
                 self._action("S&tronger", "=", lambda: panel.add_strength(0.1)),
                 self._action("&Weaker", "-", lambda: panel.add_strength(-0.1)),
                 self._action("&Eyedropper", "I", self.painter.start_eyedropper),
+                self._action("&Leave painting", "Escape", self._leave_painting),
             ]
         )
 
@@ -302,6 +303,13 @@ class DesignerWindow(QMainWindow):
         if on:
             self.paint_dock.show()
             self.paint_dock.raise_()
+
+    def _leave_painting(self) -> None:
+        """Escape: drop a pending eyedropper pick, else leave the paint tool."""
+        if self.painter.eyedropper:
+            self.painter.cancel_eyedropper()
+        elif self.paint_action.isChecked():
+            self.paint_action.setChecked(False)
 
     def _on_brush_changed(self) -> None:
         self.viewport.set_brush_size(self.paint_panel.size_box.value())

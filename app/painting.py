@@ -77,6 +77,10 @@ class PaintController(QObject):
         self.eyedropper = True
         self.panel.message.setText("click the map to take its value")
 
+    def cancel_eyedropper(self) -> None:
+        self.eyedropper = False
+        self.panel.message.clear()
+
     def pick(self, x: float, y: float) -> None:
         self.eyedropper = False
         self.panel.message.clear()

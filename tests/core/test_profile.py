@@ -38,3 +38,23 @@ def test_path_samples_are_even_along_the_keys():
     assert np.allclose(targets[2], (10, 0, 0))
     with pytest.raises(ValueError, match="at least two"):
         sample_path(keys[:1], 3)
+
+
+def test_the_live_overlay_averages_the_frames_it_holds():
+    import json
+
+    from core.profile import frames_csv, frames_json, overlay_text, rolling
+
+    frames = [
+        FrameStats(t_a_ms=t, t_g_ms=t / 2, c_g=c) for t, c in ((10.0, 3), (20.0, 5), (60.0, 7))
+    ]
+    stats = rolling(frames)
+    assert stats["t_a"] == (30.0, 10.0, 60.0) and stats["c_g"] == (5.0, 3.0, 7.0)
+    text = overlay_text(frames)
+    row = next(line for line in text.splitlines() if line.startswith("t_g"))
+    assert [float(v) for v in row.split()[1:]] == [15.0, 5.0, 30.0]
+    assert "last 3 frames" in text
+    rows = frames_csv(frames).splitlines()
+    assert len(rows) == 4 and rows[2].split(",")[1] == "20.0"
+    doc = json.loads(frames_json(frames, scene="meadow"))
+    assert doc["scene"] == "meadow" and [f["c_g"] for f in doc["frames"]] == [3, 5, 7]

@@ -296,7 +296,9 @@ def test_the_painting_shortcuts_people_know(window, qtbot):
     assert panel.strength_box.value() == pytest.approx(strength)
     QTest.keyClick(vp, Qt.Key.Key_I)
     assert window.painter.eyedropper
+    QTest.keyClick(vp, Qt.Key.Key_Escape)  # drops the pick first, the tool stays
+    assert not window.painter.eyedropper and vp.tool == "paint"
     QTest.keyClick(vp, Qt.Key.Key_P)
     assert window.overlay.isVisible()
-    QTest.keyClick(vp, Qt.Key.Key_B)
-    assert vp.tool == "camera"
+    QTest.keyClick(vp, Qt.Key.Key_Escape)
+    assert vp.tool == "camera" and not window.paint_action.isChecked()
