@@ -28,23 +28,33 @@ def pixel_ray(
     return camera.eye.astype(np.float64), direction / np.linalg.norm(direction)
 
 
-def ground_height(terrain: Terrain, x, z) -> np.ndarray:
-    """World height of the ground at world (x, z) (0 on a flat terrain)."""
+def ground_height(terrain: Terrain, x, z, heights: np.ndarray | None = None) -> np.ndarray:
+    """World height of the ground at world (x, z) (0 on a flat terrain). `heights`: a height
+    map newer than the terrain's (one being painted), 0 … 1 like the terrain's."""
     x, z = np.asarray(x, np.float64), np.asarray(z, np.float64)
-    if terrain.heights is None or terrain.height_scale <= 0:
+    heights = terrain.heights if heights is None else heights
+    if heights is None or terrain.height_scale <= 0:
         return np.zeros(np.broadcast(x, z).shape)
     u = (x - terrain.origin[0]) / terrain.columns
     v = (z - terrain.origin[1]) / terrain.rows
-    return bilinear(terrain.heights, u, v) * terrain.height_scale
+    return bilinear(heights, u, v) * terrain.height_scale
 
 
 def ground_hit(
-    terrain: Terrain, origin: np.ndarray, direction: np.ndarray, samples: int = 2048
+    terrain: Terrain,
+    origin: np.ndarray,
+    direction: np.ndarray,
+    samples: int = 2048,
+    heights: np.ndarray | None = None,
 ) -> np.ndarray | None:
-    """The first point where the ray meets the ground inside the terrain, or None."""
+    """The first point where the ray meets the ground inside the terrain, or None; `heights`
+    as in ground_height."""
     x0, z0, x1, z1 = terrain.rect
     top = float(terrain.cell_max.max()) if terrain.cell_max.size else 0.0
     bottom = float(terrain.cell_min.min()) if terrain.cell_min.size else 0.0
+    if heights is not None and terrain.height_scale > 0:
+        top = max(top, float(heights.max()) * terrain.height_scale)
+        bottom = min(bottom, float(heights.min()) * terrain.height_scale)
     lo = np.array([x0, bottom - 1e-3, z0])
     hi = np.array([x1, top + 1e-3, z1])
     parallel = np.abs(direction) < 1e-12
@@ -59,7 +69,7 @@ def ground_hit(
         return None
     t = np.linspace(near, far, samples)
     points = origin[None, :] + t[:, None] * direction[None, :]
-    above = points[:, 1] - ground_height(terrain, points[:, 0], points[:, 2])
+    above = points[:, 1] - ground_height(terrain, points[:, 0], points[:, 2], heights)
     below = np.flatnonzero(above <= 0.0)
     if below.size == 0:
         return None

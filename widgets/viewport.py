@@ -233,7 +233,11 @@ class GrassViewport(QOpenGLWidget):
         if self._terrain is None:
             return None
         ray = pixel_ray(self.camera, x, y, max(self.width(), 1), max(self.height(), 1))
-        return ground_hit(self._terrain, *ray)
+        # the height map as painted so far: the terrain follows it only after the stroke
+        heights = None
+        if self._maps is not None and self._terrain.height_scale > 0:
+            heights = self._maps.layer("height")[..., 0]
+        return ground_hit(self._terrain, *ray, heights=heights)
 
     def texel_at(self, x: float, y: float) -> tuple[float, float] | None:
         """The design-map texel (column, row) under widget position (x, y), or None."""

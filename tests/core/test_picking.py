@@ -42,3 +42,14 @@ def test_texels_and_circles_follow_the_terrain():
     ring = ground_circle(terrain, 1.0, 2.0, 3.0)
     assert np.allclose(np.hypot(ring[:, 0] - 1.0, ring[:, 2] - 2.0), 3.0, atol=1e-4)
     assert np.allclose(ring[:, 1], ground_height(terrain, ring[:, 0], ring[:, 2]) + 0.02, atol=1e-4)
+
+
+def test_picking_follows_a_height_map_newer_than_the_terrain():
+    flat = np.zeros((64, 64), np.float32)
+    terrain = Terrain.centred(16, 16, heights=flat, height_scale=2.0)
+    raised = flat.copy()
+    raised[24:40, 24:40] = 1.0  # a plateau painted 2 units up, the terrain not rebuilt yet
+    camera = Camera.from_eye_target((0.0, 12.0, 0.01), (0.0, 0.0, 0.0))
+    ray = pixel_ray(camera, 320, 240, 640, 480)
+    assert ground_hit(terrain, *ray)[1] == pytest.approx(0.0, abs=0.02)
+    assert ground_hit(terrain, *ray, heights=raised)[1] == pytest.approx(2.0, abs=0.02)
