@@ -453,7 +453,7 @@ class DesignerWindow(QMainWindow):
         from PIL import Image
 
         size = (self.viewport.width() * scale, self.viewport.height() * scale)
-        limit = self.viewport.ctx.info["GL_MAX_RENDERBUFFER_SIZE"]
+        limit = self.viewport.max_image_size
         if max(size) > limit:
             QMessageBox.warning(
                 self, "Sward", f"{size[0]} × {size[1]} is larger than this GPU draws ({limit})"

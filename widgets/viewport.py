@@ -89,6 +89,7 @@ class GrassViewport(QOpenGLWidget):
         self._fly_timer.timeout.connect(self._fly_step)
         self.last_stats = FrameStats()
         self.continuous = False  # draw frame after frame (profiling)
+        self.max_image_size = 0  # largest image side render_image can draw (after initializeGL)
         self.tool = "camera"  # camera | paint
         self.brush_size = 24.0  # texels, for the outline
         self.show_zones = False  # LOD zone rings on the ground
@@ -259,6 +260,8 @@ class GrassViewport(QOpenGLWidget):
     # -- GL ----------------------------------------------------------------------------------
     def initializeGL(self) -> None:
         self.ctx = context.wrap_current()
+        # asked here, with this widget's context current (ctx.info asks whichever one is)
+        self.max_image_size = int(self.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
         pipeline = FramePipeline(self.ctx)
         pipeline.auto_convert = False  # self.slices converts step by step
         pipeline.set_density(self._density)

@@ -7,6 +7,29 @@ from PySide6.QtCore import QSettings
 from app.designer import DesignerWindow
 from app.scenes import get_scene
 
+# Designer windows are closed after their test but deleted only at the end of the session:
+# deleting one destroys its pyqtgraph parameter trees in C++, and a later object born at a freed
+# address was seen to come back from shiboken as the dead tree item (a TypeError deep in a new
+# window's SpinBox, once in a dozen runs). Deleting them together at the end avoids the reuse.
+_windows: list = []
+
+
+def keep(window):
+    """Hold a designer window until the end of the session (instead of qtbot.addWidget)."""
+    _windows.append(window)
+    return window
+
+
+@pytest.fixture(scope="session", autouse=True)
+def delete_windows_at_the_end():
+    yield
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    for window in _windows:
+        window.deleteLater()
+    _windows.clear()
+    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+
 
 @pytest.fixture(autouse=True)
 def no_leaked_windows(request):
@@ -34,11 +57,15 @@ def window(qtbot, tmp_path, monkeypatch):
     QSettings.setPath(QSettings.Format.NativeFormat, QSettings.Scope.UserScope, str(tmp_path))
     # closing with unsaved edits asks; a test answers "discard" unless it says otherwise
     monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
+    # a modal message nobody answers would hang the run: fail at once instead (tests that
+    # expect a message replace this)
+    monkeypatch.setattr(
+        QMessageBox, "warning", lambda *a, **k: pytest.fail(f"unexpected message: {a[2]}")
+    )
     scene = get_scene("patch-grid")
     scene = type(scene)(**{**scene.__dict__, "params": scene.params.replace(blade_count=600)})
-    win = DesignerWindow(scene)
+    win = keep(DesignerWindow(scene))
     win.autosave.directory = tmp_path / "autosave"
-    qtbot.addWidget(win)
     win.resize(1300, 640)
     win.show()
     qtbot.waitExposed(win)

@@ -5,7 +5,7 @@ import pytest
 from PySide6.QtCore import QPoint, Qt
 
 from tests.conftest import coverage
-from tests.widgets.conftest import grab, wait_for_slices
+from tests.widgets.conftest import grab, keep, wait_for_slices
 
 pytestmark = pytest.mark.gui
 
@@ -195,8 +195,7 @@ def test_autosave_recovers_unsaved_work_after_a_crash(window, qtbot, tmp_path, m
     window.panel.param("density").setValue(0.45)
     assert window.autosave.save_now() and window.autosave.path.exists()
     # the session "crashes": a new one starts with the autosave still there
-    other = DesignerWindow(get_scene("patch-grid"))
-    qtbot.addWidget(other)
+    other = keep(DesignerWindow(get_scene("patch-grid")))
     other.autosave.directory = window.autosave.directory
     asked = []
     monkeypatch.setattr(
