@@ -48,14 +48,13 @@ class HeadlessRenderer:
         return self._out
 
     def render(
-        self, camera: Camera, size: tuple[int, int], measure: bool = True
+        self, camera: Camera, size: tuple[int, int], measure: bool = True, preview: bool = False
     ) -> tuple[np.ndarray, FrameStats]:
-        """One frame: an (h, w, 3) uint8 image, top row first, and its statistics."""
+        """One frame: an (h, w, 3) uint8 image, top row first, and its statistics; `preview`:
+        the viewport's half-resolution frame (render/frame.py)."""
         out = self._target(size)
-        stats = self.pipeline.render(camera, out, size, measure=measure)
-        raw = out.read(components=3, alignment=1)
-        image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1]
-        return np.ascontiguousarray(image), stats
+        stats = self.pipeline.render(camera, out, size, measure=measure, preview=preview)
+        return context.read_rgb(out, size), stats
 
     def release(self) -> None:
         self.pipeline.release()

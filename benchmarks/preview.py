@@ -23,17 +23,13 @@ def preview(runs: int = 3) -> list[dict]:
     renderer.pipeline.set_only("lod")
     renderer.load(scene)
     camera = scene.camera()
-    out = renderer._target(SIZE)
     rows = []
     times = {}
     for skip in (True, False):
         renderer.pipeline.skip_bare_cells = skip
         for preview in (False, True):
-            renderer.pipeline.render(camera, out, SIZE, preview=preview)  # warm-up
-            frames = [
-                renderer.pipeline.render(camera, out, SIZE, measure=True, preview=preview)
-                for _ in range(runs)
-            ]
+            renderer.render(camera, SIZE, preview=preview)  # warm-up
+            frames = [renderer.render(camera, SIZE, preview=preview)[1] for _ in range(runs)]
             name = f"meadow_{'preview' if preview else 'full'}{'' if skip else '_no_skip'}"
             times[name] = statistics.median(f.t_a_ms for f in frames)
             last = frames[-1]

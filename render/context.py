@@ -7,6 +7,7 @@ context (`wrap_current`), the command line, tests and benchmarks use `standalone
 from __future__ import annotations
 
 import moderngl
+import numpy as np
 
 
 class GLUnavailableError(RuntimeError):
@@ -32,6 +33,13 @@ def wrap_current() -> moderngl.Context:
 def describe(ctx: moderngl.Context) -> str:
     info = ctx.info
     return f"{info['GL_RENDERER']} / {info['GL_VERSION']} (max samples {ctx.max_samples})"
+
+
+def read_rgb(fbo: moderngl.Framebuffer, size: tuple[int, int]) -> np.ndarray:
+    """An (h, w, 3) uint8 image of a framebuffer, top row first."""
+    raw = fbo.read(viewport=(0, 0, *size), components=3, alignment=1)
+    image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1]
+    return np.ascontiguousarray(image)
 
 
 def release_framebuffer(fbo: moderngl.Framebuffer, *attachments) -> None:

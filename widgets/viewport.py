@@ -322,14 +322,13 @@ class GrassViewport(QOpenGLWidget):
                 overlay.set_lines(name, [])
             out = self.ctx.framebuffer(self.ctx.renderbuffer(size, 4))
             self.pipeline.render(self.camera, out, size)
-            raw = out.read(components=3, alignment=1)
+            image = context.read_rgb(out, size)
             release_framebuffer(out, *out.color_attachments)
         finally:
             for name, lines in groups.items():
                 overlay.set_lines(name, lines)
             self.doneCurrent()
-        image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1]
-        return np.ascontiguousarray(image)
+        return image
 
     @property
     def settling(self) -> bool:
