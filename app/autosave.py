@@ -1,36 +1,42 @@
-"""Autosave and recovery: while there are unsaved changes the project is saved every minute to
-a file of its own (never over the person's project); closing normally removes it. If Sward did
-not close normally, the next start offers to recover that work."""
+"""Autosave and recovery: while there are unsaved changes the project is saved every minute
+(the window's timer calls `save_now`) to a file of its own, never over the person's project;
+closing normally removes it. If Sward did not close normally, the next start offers to recover
+that work. Qt-free (app/dialogs.py); `default_directory` asks Qt where application data goes."""
 
 from __future__ import annotations
 
 import time
 from pathlib import Path
 
-from PySide6.QtCore import QObject, QSettings, QStandardPaths, QTimer
-from PySide6.QtWidgets import QMessageBox
-
-from app.project import ProjectError, load_project, save_project
+from app.dialogs import Dialogs, History, Settings
+from app.project_actions import ProjectActions
+from core.project_file import ProjectError, load_project, save_project
 
 INTERVAL_MS = 60_000
 NAME = "autosave.sward"
 
 
 def default_directory() -> Path:
+    from PySide6.QtCore import QStandardPaths
+
     location = QStandardPaths.writableLocation(QStandardPaths.StandardLocation.AppDataLocation)
     return Path(location or Path.home() / ".sward")
 
 
-class Autosave(QObject):
-    def __init__(self, window, directory: Path | None = None) -> None:
-        super().__init__(window)
-        self.window = window
-        self.directory = Path(directory) if directory is not None else default_directory()
-        self.timer = QTimer(self)
-        self.timer.setInterval(INTERVAL_MS)
-        self.timer.timeout.connect(self.save_now)
-        self.timer.start()
-        self.settings = QSettings("Sward", "Sward")
+class Autosave:
+    def __init__(
+        self,
+        directory: Path,
+        projects: ProjectActions,
+        history: History,
+        dialogs: Dialogs,
+        settings: Settings,
+    ) -> None:
+        self.directory = Path(directory)
+        self.projects = projects
+        self.history = history
+        self.dialogs = dialogs
+        self.settings = settings
 
     @property
     def path(self) -> Path:
@@ -38,16 +44,15 @@ class Autosave(QObject):
 
     def save_now(self) -> bool:
         """Save the unsaved work (nothing to do when the project is clean)."""
-        w = self.window
-        if w.undo_stack.isClean():
+        if self.history.isClean():
             return False
         try:
             self.directory.mkdir(parents=True, exist_ok=True)
-            save_project(self.path, w.projects.current_scene(), w.maps)
+            save_project(self.path, self.projects.document())
         except (OSError, ProjectError) as exc:
-            w.statusBar().showMessage(f"autosave failed: {exc}", 6000)
+            self.dialogs.status(f"autosave failed: {exc}", 6000)
             return False
-        project = w.projects.path
+        project = self.projects.path
         self.settings.setValue("autosave/project", str(project) if project else "")
         self.settings.setValue("autosave/time", time.strftime("%Y-%m-%d %H:%M"))
         return True
@@ -62,24 +67,20 @@ class Autosave(QObject):
         if not self.path.exists():
             return False
         when = self.settings.value("autosave/time", "an earlier session")
-        answer = QMessageBox.question(
-            self.window,
-            "Sward",
-            f"Sward did not close normally. Recover the unsaved work autosaved at {when}?",
-            QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.No,
-        )
-        if answer != QMessageBox.StandardButton.Yes:
+        if not self.dialogs.ask_yes(
+            f"Sward did not close normally. Recover the unsaved work autosaved at {when}?"
+        ):
             self.discard()
             return False
         try:
-            scene = load_project(self.path)
+            document = load_project(self.path)
         except ProjectError as exc:
-            QMessageBox.warning(self.window, "Sward", f"the autosave cannot be read: {exc}")
+            self.dialogs.warn(f"the autosave cannot be read: {exc}")
             self.discard()
             return False
-        self.window.open_scene(scene)
+        self.projects.open_document(document)
         original = self.settings.value("autosave/project", "")
-        self.window.projects.path = Path(original) if original else None
-        self.window.undo_stack.resetClean()  # recovered work is not saved anywhere yet
-        self.window.statusBar().showMessage("recovered the autosaved work: save it", 8000)
+        self.projects.path = Path(original) if original else None
+        self.history.resetClean()  # recovered work is not saved anywhere yet
+        self.dialogs.status("recovered the autosaved work: save it", 8000)
         return True

@@ -103,42 +103,39 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _scene(args: argparse.Namespace):
-    """The scene of --project, or else of --scene."""
+def _document(args: argparse.Namespace):
+    """The project of --project, or else a new one from the built-in --scene."""
     if getattr(args, "project", None) is not None:
-        from app.project import ProjectError, load_project
+        from core.project_file import ProjectError, load_project
 
         try:
             return load_project(args.project)
         except ProjectError as exc:
             raise CliError(str(exc)) from None
     try:
-        return get_scene(args.scene)
+        return get_scene(args.scene).document()
     except KeyError as exc:
         raise CliError(exc.args[0]) from None
 
 
 def cmd_new(args: argparse.Namespace) -> int:
-    from app.project import ProjectError, save_project
+    from core.project_file import ProjectError, save_project
 
-    try:
-        scene = get_scene(args.scene)
-    except KeyError as exc:
-        raise CliError(exc.args[0]) from None
+    document = _document(args)
     _writable(args.file)
     try:
-        save_project(args.file, scene)
+        save_project(args.file, document)
     except ProjectError as exc:
         raise CliError(str(exc)) from None
-    print(f"wrote {args.file} (scene {scene.name})")
+    print(f"wrote {args.file} (scene {document.name})")
     return 0
 
 
 def cmd_render(args: argparse.Namespace) -> int:
-    from app.headless import HeadlessRenderer
     from core.params import PRESETS, ParameterError
+    from render.headless import HeadlessRenderer
 
-    scene = _scene(args)
+    document = _document(args)
     if (args.eye is None) != (args.target is None):
         raise CliError("--eye and --target go together")
     if args.out is None and args.stats is None:
@@ -149,7 +146,7 @@ def cmd_render(args: argparse.Namespace) -> int:
     if args.density is not None and not 0.0 <= args.density <= 1.0:
         raise CliError(f"--density {args.density:g} out of range; allowed 0 … 1")
 
-    params = scene.params
+    params = document.params(0)
     if args.preset is not None:
         if args.preset not in PRESETS:
             raise CliError(f"unknown preset {args.preset!r}; presets: {', '.join(PRESETS)}")
@@ -169,21 +166,19 @@ def cmd_render(args: argparse.Namespace) -> int:
             raise CliError(f"--eye/--target: {exc}") from None
         camera_name = "custom"
     else:
-        camera_name = args.camera or scene.default_camera
-        if camera_name not in scene.cameras:
+        camera_name = args.camera or document.default_camera
+        if camera_name not in document.cameras:
             raise CliError(
-                f"unknown camera {camera_name!r} for scene {scene.name}; "
-                f"cameras: {', '.join(scene.cameras)}"
+                f"unknown camera {camera_name!r} for scene {document.name}; "
+                f"cameras: {', '.join(document.cameras)}"
             )
-        camera = scene.camera(camera_name)
+        camera = document.camera(camera_name)
 
-    renderer = HeadlessRenderer()
-    renderer.pipeline.view = args.view
-    renderer.pipeline.set_lod(scene.lod)
-    renderer.pipeline.set_only(args.only or "lod")
-    renderer.load(scene, params, density=args.density)
-    image, stats = renderer.render(camera, args.size, measure=True)
-    renderer.release()
+    document.set_params(0, params)
+    if args.density is not None:
+        document.density = args.density
+    with HeadlessRenderer(document, mode=args.only or "lod", view=args.view) as renderer:
+        image, stats = renderer.render(camera, args.size, measure=True)
 
     if args.out is not None:
         from PIL import Image
@@ -194,7 +189,7 @@ def cmd_render(args: argparse.Namespace) -> int:
             raise CliError(f"cannot write {args.out}: {exc.strerror or exc}") from None
         print(f"wrote {args.out} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
     if args.stats is not None:
-        data = {**stats.to_dict(), "scene": scene.name, "camera": camera_name}
+        data = {**stats.to_dict(), "scene": document.name, "camera": camera_name}
         try:
             args.stats.write_text(json.dumps(data, indent=2) + "\n")
         except OSError as exc:
@@ -205,16 +200,18 @@ def cmd_render(args: argparse.Namespace) -> int:
 def cmd_profile(args: argparse.Namespace) -> int:
     from app.profile import profile
 
-    scene = _scene(args)
-    if args.path is not None and args.path not in scene.paths:
-        known = ", ".join(scene.paths) or "none"
-        raise CliError(f"unknown camera path {args.path!r} for scene {scene.name}; paths: {known}")
+    document = _document(args)
+    if args.path is not None and args.path not in document.paths:
+        known = ", ".join(document.paths) or "none"
+        raise CliError(
+            f"unknown camera path {args.path!r} for scene {document.name}; paths: {known}"
+        )
     frames = args.frames if args.frames is not None else (30 if args.path else 5)
     if not 1 <= frames <= 10_000:
         raise CliError(f"--frames {frames} out of range; allowed 1 … 10000")
     if args.out is not None:
         _writable(args.out)
-    text, _ = profile(scene, args.size, frames, args.path, args.out, args.only)
+    text, _ = profile(document, args.size, frames, args.path, args.out, args.only)
     print(text)
     return 0
 

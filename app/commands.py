@@ -10,7 +10,10 @@ from __future__ import annotations
 from PySide6.QtGui import QUndoCommand, QUndoStack
 
 from core.brush import Stroke
-from core.design import PatchDesign
+from core.design_maps import DesignMaps
+from core.document import Document
+from core.lighting import Lighting
+from core.lod import LodConfig
 from core.params import PatchParams, SliceParams
 
 MEMORY_CAP = 512 * 1024 * 1024  # bytes of paint-stroke texels the history keeps
@@ -45,42 +48,78 @@ class Command(QUndoCommand):
 
 
 class SetValue(Command):
-    """One attribute of a model from `old` to `new` (blade parameters, density, slices, …)."""
+    """One value of the document from `old` to `new`: an attribute (density, slices, light,
+    cameras), or with `index` one grass type's `params` or `lod` (document.set_<name>)."""
 
-    def __init__(self, text: str, model, attribute: str, old, new, merge_id: int = -1) -> None:
+    def __init__(
+        self,
+        text: str,
+        document: Document,
+        name: str,
+        old,
+        new,
+        merge_id: int = -1,
+        index: int | None = None,
+    ) -> None:
         super().__init__(text)
-        self.model, self.attribute, self.old, self.new = model, attribute, old, new
-        self.merge_id = merge_id
+        self.document, self.name, self.index = document, name, index
+        self.old, self.new, self.merge_id = old, new, merge_id
+
+    def _set(self, value) -> None:
+        if self.index is None:
+            setattr(self.document, self.name, value)
+        else:
+            getattr(self.document, f"set_{self.name}")(self.index, value)
 
     def apply(self) -> None:
-        setattr(self.model, self.attribute, self.new)
+        self._set(self.new)
 
     def revert(self) -> None:
-        setattr(self.model, self.attribute, self.old)
+        self._set(self.old)
 
     def id(self) -> int:
         return self.merge_id
 
     def mergeWith(self, other) -> bool:  # a slider drag is one undo step
-        if other.id() != self.merge_id or other.model is not self.model:
+        if other.id() != self.merge_id or (other.document, other.name, other.index) != (
+            self.document,
+            self.name,
+            self.index,
+        ):
             return False
         self.new = other.new
         return True
 
     def clone(self) -> SetValue:
-        return SetValue(self.text(), self.model, self.attribute, self.old, self.new, self.merge_id)
+        return SetValue(
+            self.text(), self.document, self.name, self.old, self.new, self.merge_id, self.index
+        )
 
 
-def set_params(design: PatchDesign, new: PatchParams) -> SetValue:
-    return SetValue("change blades", design, "params", design.params, new)
+def set_params(doc: Document, index: int, new: PatchParams) -> SetValue:
+    text = f"change blades of {doc.grass_names[index]}"
+    return SetValue(text, doc, "params", doc.params(index), new, index=index)
 
 
-def set_density(design: PatchDesign, new: float) -> SetValue:
-    return SetValue("change density", design, "density", design.density, new, merge_id=1)
+def set_lod(doc: Document, index: int, new: LodConfig) -> SetValue:
+    text = f"edit LOD levels of {doc.grass_names[index]}"
+    return SetValue(text, doc, "lod", doc.lod(index), new, index=index)
 
 
-def set_slices(design: PatchDesign, new: SliceParams) -> SetValue:
-    return SetValue("change slices", design, "slices", design.slices, new)
+def set_density(doc: Document, new: float) -> SetValue:
+    return SetValue("change density", doc, "density", doc.density, new, merge_id=1)
+
+
+def set_slices(doc: Document, new: SliceParams) -> SetValue:
+    return SetValue("change slices", doc, "slices", doc.slices, new)
+
+
+def set_light(doc: Document, new: Lighting) -> SetValue:
+    return SetValue("change light", doc, "light", doc.light, new, merge_id=2)
+
+
+def set_cameras(doc: Document, new: dict, text: str) -> SetValue:
+    return SetValue(text, doc, "cameras", doc.cameras, new)
 
 
 class PaintStroke(Command):
@@ -138,29 +177,10 @@ def push(stack: QUndoStack, command: Command, cap: int = MEMORY_CAP) -> int:
     return dropped
 
 
-class SetLod(Command):
-    """The LOD levels of one grass type (the LOD zone editor)."""
-
-    def __init__(self, model, index: int, new) -> None:
-        super().__init__(f"edit LOD levels of {model.names[index]}")
-        self.model, self.index, self.old, self.new = model, index, model[index], new
-
-    def apply(self) -> None:
-        self.model.set(self.index, self.new)
-
-    def revert(self) -> None:
-        self.model.set(self.index, self.old)
-
-    def clone(self) -> SetLod:
-        twin = SetLod(self.model, self.index, self.new)
-        twin.old = self.old
-        return twin
-
-
 class SetMap(Command):
     """A whole map (or one grass type's density) replaced, e.g. by an imported file."""
 
-    def __init__(self, maps, layer: str, channel: int | None, new, text: str) -> None:
+    def __init__(self, maps: DesignMaps, layer: str, channel: int | None, new, text: str) -> None:
         super().__init__(text)
         self.maps, self.layer, self.channel, self.new = maps, layer, channel, new
         view = maps.layer(layer)

@@ -1,12 +1,12 @@
-"""The designer window: viewport, blade panel, undo, background patch generation."""
+"""The designer window: the open project (one document, core/document.py), the viewport that
+draws it, the panels that edit it through undoable commands, and the controllers."""
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QActionGroup, QKeySequence, QUndoStack
+from PySide6.QtCore import QSettings, Qt, QTimer
+from PySide6.QtGui import QUndoStack
 from PySide6.QtWidgets import (
     QApplication,
     QDockWidget,
@@ -19,17 +19,17 @@ from PySide6.QtWidgets import (
 )
 
 from app import commands
-from app.autosave import Autosave
+from app.autosave import INTERVAL_MS, Autosave, default_directory
 from app.map_files import MapFileActions
+from app.menus import build_menus, fill_camera_menu
 from app.painting import PaintController
 from app.patch_builder import PatchBuilder
-from app.projects import ProjectActions
-from app.scenes import DEFAULT_SCENE, SCENES, CameraSpec, Scene, get_scene
-from core.design import PatchDesign
-from core.lighting import Lighting
-from core.lod_edit import LodDesign
-from core.params import PatchParams, SliceParams
-from core.patch import GrassPatch, generate_patch
+from app.project_actions import ProjectActions
+from app.qt_dialogs import QtDialogs
+from app.scenes import DEFAULT_SCENE, get_scene
+from core.brush import Stroke
+from core.document import CameraSpec, Document
+from core.patch import GrassPatch
 from widgets.light_panel import LightPanel
 from widgets.lod_panel import LodPanel
 from widgets.map_view import MapView
@@ -38,122 +38,116 @@ from widgets.patch_panel import PatchPanel
 from widgets.profile_view import ProfileOverlay, ProfilePanel
 from widgets.viewport import GrassViewport
 
-# (mode, menu text, shortcut): how the viewport draws the cells (render/frame.py MODES)
-REPRESENTATIONS = (
-    ("lod", "&LOD zones (all three)", "Ctrl+1"),
-    ("geometry", "&Geometry only", "Ctrl+2"),
-    ("volume", "&Volume only", "Ctrl+3"),
-    ("image", "&Image-based only", "Ctrl+4"),
-    ("compare", "&Compare side by side", "Ctrl+5"),
-)
+HEIGHTS_SETTLE_MS = 250  # the terrain follows a changed height map this long after the edit
 
 
 class DesignerWindow(QMainWindow):
-    def __init__(self, scene: Scene) -> None:
+    def __init__(self, document: Document) -> None:
         super().__init__()
-        self.scene = scene
-        self.setWindowTitle(f"Sward — {scene.name}[*]")
-        self.design = PatchDesign(scene.params, scene.density, scene.slices)
-        self.designs = self._grass_designs(scene)  # blade parameters per grass type
+        self.document = document
+        self.setWindowTitle(f"Sward — {document.name}[*]")
         self.undo_stack = QUndoStack(self)
         self.history_cap = commands.MEMORY_CAP
-        self.builder = PatchBuilder(self)
-        self.projects = ProjectActions(self)
-        self.autosave = Autosave(self)
+        self.dialogs = QtDialogs(self)
+        settings = QSettings("Sward", "Sward")
+        self.projects = ProjectActions(
+            lambda: self.document,
+            self.open_document,
+            self.undo_stack,
+            self.dialogs,
+            settings,
+            lambda: self.fill_recent_menu(),
+        )
+        self.autosave = Autosave(
+            default_directory(), self.projects, self.undo_stack, self.dialogs, settings
+        )
+        self._autosave_timer = QTimer(self, interval=INTERVAL_MS, timeout=self.autosave.save_now)
+        self._autosave_timer.start()
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
-        self.patch: GrassPatch | None = None
+        self.patch: GrassPatch | None = None  # the first grass type's, once made
 
-        self.viewport = GrassViewport(scene.camera())
-        self.lods = lod_design(scene)
-        self.paint_panel = PaintPanel(self.lods.names)
-        self.painter = PaintController(self)
+        self.builder = PatchBuilder(self)
+        self.viewport = GrassViewport(document, self.builder.request)
+        self.setCentralWidget(self.viewport)
+        self.paint_panel = PaintPanel(document.grass_names)
+        self._heights = QTimer(self, singleShot=True, interval=HEIGHTS_SETTLE_MS)
+        self._heights.timeout.connect(lambda: self.document.rebuild_terrain())
+        self.painter = PaintController(
+            document, self.paint_panel, self._push_stroke, self._heights.start
+        )
         self.map_view = MapView()
-        self.map_files = MapFileActions(self)
-        self._show_scene(scene)
-        self.viewport.set_density(self.design.density)
-        self.viewport.set_slice_params(self.design.slices)
+        self.map_view.set_maps(document.maps)
+        self.map_files = MapFileActions(
+            lambda: self.document, self.paint_panel, self._push_map, self.dialogs
+        )
         self._converting = ""
         self._last_frame = None
-        self.setCentralWidget(self.viewport)
 
-        self.panel = PatchPanel(self.design)
-        self.panel.set_grass_types(self.lods.names)
-        dock = self._dock("Patch", self.panel, "patch-dock")
-        dock.setMinimumWidth(330)
-        self.lod_panel = LodPanel(self.lods)
-        self.light_panel = LightPanel(scene.light())
+        self.panel = PatchPanel(document)
+        self.patch_dock = self._dock("Patch", self.panel, "patch-dock")
+        self.patch_dock.setMinimumWidth(330)
+        self.lod_panel = LodPanel(document)
+        self.light_panel = LightPanel(document.light)
         self.light_dock = self._dock("Light", self.light_panel, "light-dock")
         self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock")
         self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock")
         self.overlay = ProfileOverlay(self.viewport)
         self.profile_panel = ProfilePanel()
         self.profile_dock = self._dock("Timings", self.profile_panel, "profile-dock")
-        self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
-        self.profile_panel.recorded.connect(self._save_recording)
         self.map_dock = self._dock("Map", self.map_view, "map-dock")
         self.history = QUndoView(self.undo_stack)
         self.history.setEmptyLabel("(opened)")
         self.history_dock = self._dock("History", self.history, "history-dock")
-        self.tabifyDockWidget(dock, self.paint_dock)
+        self.tabifyDockWidget(self.patch_dock, self.paint_dock)
         self.tabifyDockWidget(self.paint_dock, self.lod_dock)
         self.tabifyDockWidget(self.lod_dock, self.light_dock)
         self.tabifyDockWidget(self.history_dock, self.profile_dock)
         self.tabifyDockWidget(self.profile_dock, self.map_dock)
         self.history_dock.raise_()
-        dock.raise_()
-        self.resizeDocks([dock], [380], Qt.Orientation.Horizontal)
+        self.patch_dock.raise_()
+        self.resizeDocks([self.patch_dock], [380], Qt.Orientation.Horizontal)
 
         self.status = QLabel("generating patch …")
         self.statusBar().addPermanentWidget(self.status, 1)
+        self._connect()
+        self._bind_document(document)
+        build_menus(self)
+        self.resize(1200, 760)
 
+    def _connect(self) -> None:
+        """Panels -> commands -> the document; viewport and builder -> the window."""
         self.panel.params_edited.connect(self._push_params)
         self.panel.density_edited.connect(self._push_density)
         self.panel.slices_edited.connect(self._push_slices)
-        self.design.params_changed.connect(self.builder.request)
-        self.panel.grass_type_changed.connect(self._on_grass_type_chosen)
-        self.design.density_changed.connect(self.viewport.set_density)
-        self.design.slices_changed.connect(self.viewport.set_slice_params)
+        self.lod_panel.lod_edited.connect(
+            lambda i, config: self.push(commands.set_lod(self.document, i, config))
+        )
+        self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
+        self.light_panel.lighting_edited.connect(
+            lambda light: self.push(commands.set_light(self.document, light))
+        )
+        self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
+        self.profile_panel.recorded.connect(self._save_recording)
         self.viewport.slices.progress.connect(self._on_conversion)
         self.builder.ready.connect(self._on_patch_ready)
         self.builder.busy.connect(self._on_busy)
         self.viewport.frame_rendered.connect(self._on_frame)
-        self.viewport.paint_pressed.connect(self.painter.press)
-        self.viewport.paint_moved.connect(self.painter.move)
-        self.viewport.paint_released.connect(self.painter.release)
+        for source in (self.viewport, self.map_view):
+            source.paint_pressed.connect(self._paint_press)
+            source.paint_moved.connect(self.painter.move)
+            source.paint_released.connect(self.painter.release)
         self.paint_panel.brush_changed.connect(self._on_brush_changed)
-        self.painter.heights_changed.connect(self._rebuild_terrain)
-        self.map_view.pressed.connect(self.painter.press)
-        self.map_view.moved.connect(self.painter.move)
-        self.map_view.released.connect(self.painter.release)
         self.paint_panel.import_requested.connect(lambda: self.map_files.import_map())
         self.paint_panel.export_requested.connect(lambda: self.map_files.export_map())
-        self.lod_panel.lod_edited.connect(
-            lambda i, config: self.push(commands.SetLod(self.lods, i, config))
-        )
-        self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
-        self.lods.changed.connect(self.viewport.set_layer_lod)
-        self.light_panel.lighting_edited.connect(
-            lambda light: self.push(
-                commands.SetValue("change light", self, "lighting", self.lighting, light, 2)
-            )
-        )
-        self._build_menus(dock)
-        self.resize(1200, 760)
-        self.builder.request(self.design.params)
 
-    @property
-    def lighting(self) -> Lighting:
-        return self.scene.light()
+    def _bind_document(self, document: Document) -> None:
+        """The window's own views of the document (the others bind themselves)."""
+        document.events.light.connect(self.light_panel.show_lighting)
+        document.events.cameras.connect(self._on_cameras_changed)
 
-    @lighting.setter
-    def lighting(self, light: Lighting) -> None:
-        """Sun, ambient and fog of the scene (undoable: commands.SetValue)."""
-        self.scene = dataclasses.replace(
-            self.scene, lighting=light, fog_distance=light.fog_distance
-        )
-        self.viewport.set_lighting(light)
-        if self.light_panel.lighting != light:
-            self.light_panel.show_lighting(light)
+    def _unbind_document(self, document: Document) -> None:
+        document.events.light.disconnect(self.light_panel.show_lighting)
+        document.events.cameras.disconnect(self._on_cameras_changed)
 
     def _dock(self, title: str, widget, name: str) -> QDockWidget:
         dock = QDockWidget(title, self)
@@ -162,106 +156,33 @@ class DesignerWindow(QMainWindow):
         self.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, dock)
         return dock
 
-    def _action(self, text: str, key: str, slot, checkable: bool = False) -> QAction:
-        act = QAction(text, self, shortcut=QKeySequence(key), checkable=checkable)
-        (act.toggled if checkable else act.triggered).connect(slot)
-        self.addAction(act)  # works while the menu bar is hidden, e.g. in a test
-        return act
-
-    def _build_menus(self, dock: QDockWidget) -> None:
-        file_menu = self.menuBar().addMenu("&File")
-        scenes = file_menu.addMenu("&New from built-in scene")
-        for name in SCENES:
-            act = QAction(f"{name} — {SCENES[name].description}", self)
-            act.triggered.connect(lambda _=False, n=name: self.projects.new(get_scene(n)))
-            scenes.addAction(act)
-        open_ = QAction("&Open project…", self, shortcut=QKeySequence.StandardKey.Open)
-        open_.triggered.connect(lambda: self.projects.open())
-        self.recent_menu = file_menu.addMenu("Open &recent")
-        save = QAction("&Save project", self, shortcut=QKeySequence.StandardKey.Save)
-        save.triggered.connect(self.projects.save)
-        save_as = QAction("Save project &as…", self, shortcut=QKeySequence("Ctrl+Shift+S"))
-        save_as.triggered.connect(lambda: self.projects.save_as())
-        image = QAction("Save &image…", self, shortcut=QKeySequence("Ctrl+E"))
-        image.triggered.connect(self._save_image)
-        quit_ = QAction("&Quit", self, shortcut=QKeySequence.StandardKey.Quit)
-        quit_.triggered.connect(self.close)
-        file_menu.insertAction(scenes.menuAction(), open_)
-        file_menu.addActions([save, save_as, image, quit_])
-        self.fill_recent_menu()
-        edit = self.menuBar().addMenu("&Edit")
-        undo = self.undo_stack.createUndoAction(self, "&Undo")
-        undo.setShortcut(QKeySequence.StandardKey.Undo)
-        redo = self.undo_stack.createRedoAction(self, "&Redo")
-        redo.setShortcut(QKeySequence.StandardKey.Redo)
-        edit.addActions([undo, redo])
-        view = self.menuBar().addMenu("&View")
-        reset = QAction("&Reset camera", self, shortcut=QKeySequence("Home"))
-        reset.triggered.connect(lambda: self.viewport.set_camera(self.scene.camera()))
-        view.addAction(reset)
-        self.camera_menu = view.addMenu("&Cameras")
-        self._fill_camera_menu()
-        bookmark = self._action("&Bookmark this view…", "Ctrl+D", lambda: self.bookmark_view())
-        view.addAction(bookmark)
-        view.addSeparator()
-        group = QActionGroup(self)
-        self.mode_actions: dict[str, QAction] = {}
-        for mode, text, key in REPRESENTATIONS:
-            act = QAction(text, self, shortcut=QKeySequence(key), checkable=True)
-            act.setChecked(mode == self.viewport.mode)
-            act.triggered.connect(lambda _=False, m=mode: self.viewport.set_mode(m))
-            group.addAction(act)
-            view.addAction(act)
-            self.mode_actions[mode] = act
-        self.techniques_action = QAction(
-            "&Technique colours", self, shortcut=QKeySequence("T"), checkable=True
-        )
-        self.techniques_action.setToolTip("geometry red, volume yellow, image-based blue")
-        self.techniques_action.toggled.connect(
-            lambda on: self.viewport.set_view("techniques" if on else "shaded")
-        )
-        view.addAction(self.techniques_action)
-        self.zones_action = self._action(
-            "LOD &zones on the terrain", "Z", self.lod_panel.zones_box.setChecked, checkable=True
-        )
-        self.lod_panel.zones_box.toggled.connect(self.zones_action.setChecked)
-        view.addAction(self.zones_action)
-        self.timings_action = self._action(
-            "T&imings overlay", "P", self.overlay.setVisible, checkable=True
-        )
-        view.addAction(self.timings_action)
-        view.addSeparator()
-        docks = (self.paint_dock, self.lod_dock, self.light_dock, self.map_dock, self.history_dock)
-        for d in (dock, *docks, self.profile_dock):
-            view.addAction(d.toggleViewAction())
-        paint = self.menuBar().addMenu("&Paint")
-        self.paint_action = self._action("&Paint in the viewport", "B", self._set_painting, True)
-        paint.addAction(self.paint_action)
-        paint.addSeparator()
-        panel = self.paint_panel
-        paint.addActions(
-            [
-                self._action("&Bigger brush", "]", lambda: panel.scale_size(1.25)),
-                self._action("&Smaller brush", "[", lambda: panel.scale_size(0.8)),
-                self._action("S&tronger", "=", lambda: panel.add_strength(0.1)),
-                self._action("&Weaker", "-", lambda: panel.add_strength(-0.1)),
-                self._action("&Eyedropper", "I", self.painter.start_eyedropper),
-                self._action("&Leave painting", "Escape", self._leave_painting),
-            ]
-        )
-
-    @property
-    def cameras(self) -> dict:
-        return self.scene.cameras
-
-    @cameras.setter
-    def cameras(self, cameras: dict) -> None:
-        """The scene's named cameras (bookmarks; undoable: commands.SetValue)."""
-        self.scene = dataclasses.replace(self.scene, cameras=dict(cameras))
-        self._fill_camera_menu()
+    # -- the open project ----------------------------------------------------------------
+    def open_document(self, document: Document) -> None:
+        """Show another project (its patch, terrain, maps, cameras); edits of the old one
+        cannot be undone across the switch."""
+        QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
+        try:
+            self._unbind_document(self.document)
+            self.document = document
+            self._bind_document(document)
+            self.setWindowTitle(f"Sward — {document.name}[*]")
+            self.undo_stack.clear()
+            self.overlay.frames.clear()
+            self.patch = None
+            self.viewport.set_document(document)
+            self.viewport.set_camera(document.camera())
+            self.painter.set_document(document)
+            self.map_view.set_maps(document.maps)
+            self.panel.set_document(document)
+            self.lod_panel.set_document(document)
+            self.paint_panel.set_grass_names(document.grass_names)
+            self.light_panel.show_lighting(document.light)
+            fill_camera_menu(self)
+        finally:
+            QApplication.restoreOverrideCursor()
 
     def bookmark_view(self, name: str | None = None) -> bool:
-        """Keep the current view as a named camera of the scene (saved with the project)."""
+        """Keep the current view as a named camera of the project (saved with it)."""
         if name is None:
             name, ok = QInputDialog.getText(self, "Bookmark this view", "Name")
             if not ok:
@@ -273,18 +194,12 @@ class DesignerWindow(QMainWindow):
         spec = CameraSpec(
             tuple(float(v) for v in cam.eye), tuple(cam.target), far=cam.far, near=cam.near
         )
-        cameras = {**self.scene.cameras, name: spec}
-        self.push(commands.SetValue(f"bookmark {name}", self, "cameras", self.cameras, cameras))
+        cameras = {**self.document.cameras, name: spec}
+        self.push(commands.set_cameras(self.document, cameras, f"bookmark {name}"))
         return True
 
-    def _fill_camera_menu(self) -> None:
-        self.camera_menu.clear()
-        for name in self.scene.cameras:
-            act = QAction(name, self)
-            act.triggered.connect(
-                lambda _=False, n=name: self.viewport.set_camera(self.scene.camera(n))
-            )
-            self.camera_menu.addAction(act)
+    def _on_cameras_changed(self, _cameras) -> None:
+        fill_camera_menu(self)
 
     def _on_clean_changed(self, clean: bool) -> None:
         self.setWindowModified(not clean)  # "*" in the title: unsaved changes
@@ -292,19 +207,28 @@ class DesignerWindow(QMainWindow):
     def fill_recent_menu(self) -> None:
         self.recent_menu.clear()
         for path in self.projects.recent():
-            act = QAction(path, self)
+            act = self.recent_menu.addAction(path)
             act.triggered.connect(lambda _=False, p=path: self.projects.open(p))
-            self.recent_menu.addAction(act)
         self.recent_menu.setEnabled(bool(self.projects.recent()))
 
-    def _set_painting(self, on: bool) -> None:
+    # -- painting ------------------------------------------------------------------------
+    def _paint_press(self, x: float, y: float, modifiers) -> None:
+        mods = Qt.KeyboardModifier(modifiers or 0)
+        self.painter.press(
+            x,
+            y,
+            erase=bool(mods & Qt.KeyboardModifier.ControlModifier),
+            smooth=bool(mods & Qt.KeyboardModifier.ShiftModifier),
+        )
+
+    def set_painting(self, on: bool) -> None:
         self.viewport.set_tool("paint" if on else "camera")
         self.viewport.set_brush_size(self.paint_panel.size_box.value())
         if on:
             self.paint_dock.show()
             self.paint_dock.raise_()
 
-    def _leave_painting(self) -> None:
+    def leave_painting(self) -> None:
         """Escape: drop a pending eyedropper pick, else leave the paint tool."""
         if self.painter.eyedropper:
             self.painter.cancel_eyedropper()
@@ -315,59 +239,16 @@ class DesignerWindow(QMainWindow):
         self.viewport.set_brush_size(self.paint_panel.size_box.value())
         self.map_view.brush_size = float(self.paint_panel.size_box.value())
         self.map_view.show_layer(*self.paint_panel.target)
-        flat = self.paint_panel.target[0] == "height" and self.scene.height_scale <= 0
+        flat = (
+            self.paint_panel.target[0] == "height" and self.document.terrain_spec.height_scale <= 0
+        )
         self.paint_panel.message.setText(
-            f"the {self.scene.name} scene is flat (height scale 0): its height map has no effect"
+            f"{self.document.name} is flat (height scale 0): its height map has no effect"
             if flat
             else ""
         )
 
-    def _rebuild_terrain(self) -> None:
-        """The terrain's bounding volumes and ground ranges follow a changed height map."""
-        scene = dataclasses.replace(self.scene, stack=self.maps.stack)
-        self.viewport.set_terrain(scene.terrain())
-
-    def _show_scene(self, scene: Scene) -> None:
-        """Hand a scene's terrain, maps, props, LOD levels and fog to the viewport."""
-        self.viewport.set_terrain(scene.terrain())
-        self.maps = scene.design_maps()
-        self.painter.set_maps(self.maps)
-        self.map_view.set_maps(self.maps)
-        self.viewport.set_design_maps(self.maps)
-        self.viewport.set_props(scene.prop_boxes())
-        self.viewport.set_lod(scene.lod)
-        self.viewport.set_lighting(scene.light())
-        self.viewport.set_grass_types(
-            [(generate_patch(kind.params), kind.lod, kind.channel) for kind in scene.grass]
-        )
-
-    def open_scene(self, scene: Scene) -> None:
-        """Replace the scene (its patch, terrain, maps, cameras); edits of the old one cannot
-        be undone across the switch."""
-        QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
-        try:
-            self.scene = scene
-            self.setWindowTitle(f"Sward — {scene.name}[*]")
-            self.undo_stack.clear()
-            self.overlay.frames.clear()
-            self.lods = lod_design(scene)
-            self.lods.changed.connect(self.viewport.set_layer_lod)
-            self.lod_panel.set_model(self.lods)
-            self.paint_panel.set_grass_names(self.lods.names)
-            self.light_panel.show_lighting(scene.light())
-            self._show_scene(scene)
-            self.viewport.set_camera(scene.camera())
-            self._fill_camera_menu()
-            self.design.density = scene.density
-            self.design.slices = scene.slices
-            self.design.params = scene.params
-            self.designs = self._grass_designs(scene)
-            self.panel.set_grass_types(self.lods.names)
-            self.panel.set_blade_model(self.design)
-        finally:
-            QApplication.restoreOverrideCursor()
-
-    # -- edits become undoable commands ------------------------------------------------------
+    # -- edits become undoable commands --------------------------------------------------
     def push(self, command: commands.Command) -> None:
         """Every edit goes through here: onto the undo stack, under its memory cap."""
         dropped = commands.push(self.undo_stack, command, self.history_cap)
@@ -378,39 +259,29 @@ class DesignerWindow(QMainWindow):
                 6000,
             )
 
-    def _push_params(self, params: PatchParams) -> None:
-        model = self.panel.blades
-        if params != model.params:
-            self.push(commands.set_params(model, params))
+    def _push_stroke(self, stroke: Stroke, label: str) -> None:
+        self.push(commands.PaintStroke(stroke, label))
 
-    def _push_slices(self, slices: SliceParams) -> None:
-        if slices != self.design.slices:
-            self.push(commands.set_slices(self.design, slices))
+    def _push_map(self, layer: str, channel: int | None, values, text: str) -> None:
+        self.push(commands.SetMap(self.document.maps, layer, channel, values, text))
+
+    def _push_params(self, index: int, params) -> None:
+        if params != self.document.params(index):
+            self.push(commands.set_params(self.document, index, params))
+
+    def _push_slices(self, slices) -> None:
+        if slices != self.document.slices:
+            self.push(commands.set_slices(self.document, slices))
 
     def _push_density(self, density: float) -> None:
-        if density != self.design.density:
-            self.push(commands.set_density(self.design, density))
+        if density != self.document.density:
+            self.push(commands.set_density(self.document, density))
 
-    # -- results -----------------------------------------------------------------------------
-    def _grass_designs(self, scene: Scene) -> list[PatchDesign]:
-        """The first grass type's design, then one per further type (only its blades: density
-        and slices are the scene's)."""
-        designs = [self.design]
-        for i, kind in enumerate(scene.grass, start=1):
-            design = PatchDesign(kind.params)
-            design.params_changed.connect(lambda p, i=i: self.builder.request(p, i))
-            designs.append(design)
-        return designs
-
-    def _on_grass_type_chosen(self, index: int) -> None:
-        self.panel.set_blade_model(self.designs[index])
-
+    # -- results -------------------------------------------------------------------------
     def _on_patch_ready(self, kind: int, patch: GrassPatch) -> None:
-        if kind:
-            self.viewport.set_grass_patch(kind, patch)
-            return
-        self.patch = patch
-        self.viewport.set_patch(patch)
+        if kind == 0 and patch.params == self.document.params(0):
+            self.patch = patch
+        self.viewport.set_patch(kind, patch)
 
     def _on_busy(self, busy: bool) -> None:
         if busy:
@@ -433,7 +304,7 @@ class DesignerWindow(QMainWindow):
             + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
         )
 
-    def _save_image(self) -> None:
+    def save_image_dialog(self) -> None:
         w, h = self.viewport.width(), self.viewport.height()
         sizes = {
             f"window size ({w} × {h})": 1,
@@ -481,7 +352,7 @@ class DesignerWindow(QMainWindow):
         if not path:
             return
         try:
-            text = self.profile_panel.save(path, frames, scene=self.scene.name)
+            text = self.profile_panel.save(path, frames, scene=self.document.name)
         except OSError as exc:
             QMessageBox.warning(self, "Sward", f"cannot write {path}: {exc.strerror or exc}")
             return
@@ -491,23 +362,17 @@ class DesignerWindow(QMainWindow):
         if not self.projects.confirm_discard():
             event.ignore()
             return
-        self.autosave.timer.stop()
+        self._autosave_timer.stop()
         self.autosave.discard()
         self.builder.wait()
         self.viewport.release_gl()
         super().closeEvent(event)
 
 
-def lod_design(scene: Scene) -> LodDesign:
-    """The LOD levels of the scene's grass types, as the LOD zone editor edits them."""
-    names = ["main grass", *(kind.name for kind in scene.grass)]
-    return LodDesign(names, [scene.lod, *(kind.lod for kind in scene.grass)])
-
-
 def run_designer(scene_name: str = DEFAULT_SCENE) -> int:
     QApplication.setApplicationName("Sward")
     app = QApplication.instance() or QApplication(sys.argv)
-    window = DesignerWindow(get_scene(scene_name))
+    window = DesignerWindow(get_scene(scene_name).document())
     window.show()
     window.autosave.recover_if_any()
     return app.exec()

@@ -1,61 +1,76 @@
 """The paint controller: turns presses and drags on the ground (viewport) or on the 2D map view
-into brush strokes on the design maps, one undo step per stroke; the eyedropper; a terrain
-rebuild after the height map changed (bounding volumes and ground ranges follow it)."""
+into brush strokes on the document's design maps, one undo step per stroke; the eyedropper; and
+a note when the height map changed, so the terrain's bounding volumes can follow it.
+
+Qt-free: it talks to the paint panel through the narrow `BrushPanel` interface and hands each
+finished stroke to `on_stroke` (the window makes it an undo step)."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Protocol
+
 import numpy as np
-from PySide6.QtCore import QObject, Qt, QTimer, Signal
 
-from app.commands import PaintStroke
-from core.brush import Stroke
-from core.design_maps import DesignMaps
+from core.brush import Brush, Stroke
+from core.document import Document
 
 
-class PaintController(QObject):
-    heights_changed = Signal()  # after the height map settled (debounced)
-
-    def __init__(self, window) -> None:
-        super().__init__(window)
-        self.window = window
-        self.stroke: Stroke | None = None
-        self.eyedropper = False
-        self.maps: DesignMaps | None = None
-        self._heights = QTimer(self)
-        self._heights.setSingleShot(True)
-        self._heights.setInterval(250)
-        self._heights.timeout.connect(self._heights_settled)
+class BrushPanel(Protocol):
+    """What the controller needs of the paint panel."""
 
     @property
-    def panel(self):
-        return self.window.paint_panel
+    def target(self) -> tuple[str, int | None]: ...  # map layer, density channel
 
-    def set_maps(self, maps: DesignMaps) -> None:
-        if self.maps is not None:
-            self.maps.changed.disconnect(self._on_map_changed)
-        self.maps = maps
-        maps.changed.connect(self._on_map_changed)
+    @property
+    def target_label(self) -> str: ...
+
+    def brush(self, mode: str | None = None) -> Brush: ...
+
+    def show_message(self, text: str) -> None: ...
+
+    def set_value(self, values) -> None: ...
+
+
+class PaintController:
+    def __init__(
+        self,
+        document: Document,
+        panel: BrushPanel,
+        on_stroke: Callable[[Stroke, str], None],
+        on_heights: Callable[[], None],
+    ) -> None:
+        """`on_stroke(stroke, label)`: a stroke finished; `on_heights()`: the height map
+        changed (after a stroke, an undo, an import)."""
+        self.panel = panel
+        self.on_stroke = on_stroke
+        self.on_heights = on_heights
+        self.stroke: Stroke | None = None
+        self.eyedropper = False
+        self.document = document
+        document.maps.changed.connect(self._on_map_changed)
+
+    def set_document(self, document: Document) -> None:
+        self.document.maps.changed.disconnect(self._on_map_changed)
+        self.document = document
+        self.stroke = None
+        document.maps.changed.connect(self._on_map_changed)
 
     # -- strokes -----------------------------------------------------------------------------
-    def press(self, x: float, y: float, modifiers=Qt.KeyboardModifier.NoModifier) -> None:
-        """Start a stroke at map texel (x, y); Ctrl erases, Shift smooths."""
-        if self.maps is None:
-            return
+    def press(self, x: float, y: float, erase: bool = False, smooth: bool = False) -> None:
+        """Start a stroke at map texel (x, y); `erase` (Ctrl) or `smooth` (Shift) override
+        the brush's mode."""
         if self.eyedropper:
             self.pick(x, y)
             return
-        mode = None
-        if modifiers & Qt.KeyboardModifier.ControlModifier:
-            mode = "erase"
-        elif modifiers & Qt.KeyboardModifier.ShiftModifier:
-            mode = "smooth"
+        mode = "erase" if erase else "smooth" if smooth else None
         layer, channel = self.panel.target
         try:
-            self.stroke = Stroke(self.maps, layer, self.panel.brush(mode), channel)
+            self.stroke = Stroke(self.document.maps, layer, self.panel.brush(mode), channel)
         except ValueError as exc:
-            self.panel.message.setText(str(exc))
+            self.panel.show_message(str(exc))
             return
-        self.panel.message.clear()
+        self.panel.show_message("")
         self.stroke.add(x, y)
 
     def move(self, x: float, y: float) -> None:
@@ -67,35 +82,31 @@ class PaintController(QObject):
         if stroke is None or not stroke.saved:
             return
         stroke.finish()
-        label = self.panel.layer_box.currentText()
-        self.window.push(PaintStroke(stroke, f"{stroke.brush.mode} {label}"))
+        self.on_stroke(stroke, f"{stroke.brush.mode} {self.panel.target_label}")
         if stroke.layer == "height":
-            self._heights.start()
+            self.on_heights()
 
     # -- eyedropper --------------------------------------------------------------------------
     def start_eyedropper(self) -> None:
         self.eyedropper = True
-        self.panel.message.setText("click the map to take its value")
+        self.panel.show_message("click the map to take its value")
 
     def cancel_eyedropper(self) -> None:
         self.eyedropper = False
-        self.panel.message.clear()
+        self.panel.show_message("")
 
     def pick(self, x: float, y: float) -> None:
         self.eyedropper = False
-        self.panel.message.clear()
+        self.panel.show_message("")
         layer, channel = self.panel.target
-        w, h = self.maps.size
+        maps = self.document.maps
+        w, h = maps.size
         col, row = int(np.clip(x, 0, w - 1)), int(np.clip(y, 0, h - 1))
-        values = self.maps.layer(layer)[row, col]
+        values = maps.layer(layer)[row, col]
         if channel is not None:
             values = values[[max(channel, 0)]]  # all grass types: show the first one's
         self.panel.set_value(tuple(float(v) for v in values))
 
-    # -- the height map moves the terrain ----------------------------------------------------
-    def _on_map_changed(self, name: str, rect) -> None:
+    def _on_map_changed(self, name: str, _rect) -> None:
         if name == "height" and self.stroke is None:  # undo, redo, import; strokes: release
-            self._heights.start()
-
-    def _heights_settled(self) -> None:
-        self.heights_changed.emit()
+            self.on_heights()

@@ -38,7 +38,7 @@ class PatchBuilder(QObject):
         self._count = 0
         self._latest: dict[int, int] = {}
 
-    def request(self, params: PatchParams, kind: int = 0) -> None:
+    def request(self, kind: int, params: PatchParams) -> None:
         self._count += 1
         self._latest[kind] = self._count
         self.busy.emit(True)

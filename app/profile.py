@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from core.document import Document
 from core.profile import (
     SUM_ALLOWANCE_MS,
     SUM_TOLERANCE,
@@ -17,7 +18,7 @@ from core.profile import (
 
 
 def profile(
-    scene,
+    document: Document,
     size: tuple[int, int],
     frames: int,
     path: str | None,
@@ -25,17 +26,14 @@ def profile(
     only: str | None = None,
 ) -> tuple[str, dict]:
     """Render and measure; return the printed table and the JSON document."""
-    from app.headless import HeadlessRenderer
+    from render.headless import HeadlessRenderer
 
-    renderer = HeadlessRenderer()
-    renderer.pipeline.set_lod(scene.lod)
-    renderer.pipeline.set_only(only or "lod")
-    renderer.load(scene)
+    renderer = HeadlessRenderer(document, mode=only or "lod")
     if path is not None:
-        views = [(f"path {path}", scene.path_cameras(path, frames))]
+        views = [(f"path {path}", document.path_cameras(path, frames))]
     else:
-        views = [(name, [scene.camera(name)] * frames) for name in scene.cameras]
-    rows, document = [], {"scene": scene.name, "size": list(size), "viewpoints": []}
+        views = [(name, [document.camera(name)] * frames) for name in document.cameras]
+    rows, result = [], {"scene": document.name, "size": list(size), "viewpoints": []}
     every = []
     try:
         for name, cameras in views:
@@ -44,7 +42,7 @@ def profile(
             every += stats
             summary = summarize(stats)
             rows.append((name, summary))
-            document["viewpoints"].append(
+            result["viewpoints"].append(
                 {
                     "name": name,
                     "summary": summary,
@@ -55,8 +53,8 @@ def profile(
     finally:
         renderer.release()
     text = table(rows)
-    ok = all(v["parts_add_up"] for v in document["viewpoints"])
-    document["parts_add_up"] = ok
+    ok = all(v["parts_add_up"] for v in result["viewpoints"])
+    result["parts_add_up"] = ok
     text += (
         f"\nparts t_q + t_g + t_v + t_i + t_m + t_o (clear, resolve) "
         f"{'add up to' if ok else 'DO NOT add up to'} t_a within "
@@ -66,6 +64,6 @@ def profile(
         out.write_text(frames_csv(every))
         text += f"\nwrote {out}"
     elif out is not None:
-        out.write_text(json.dumps(document, indent=2) + "\n")
+        out.write_text(json.dumps(result, indent=2) + "\n")
         text += f"\nwrote {out}"
-    return text, document
+    return text, result

@@ -1,40 +1,25 @@
-"""Built-in scenes: a patch, a grid of cells and named cameras."""
+"""The catalogue of built-in scenes: each makes a new project (core/document.py)."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.camera import Camera
-from core.design_maps import LAYER_INDEX, DesignMaps
-from core.grid import grid_instances
+from core.design_maps import DesignMaps
+from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, TerrainSpec
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.markings import football_colour_map
-from core.params import DEFAULT_PRESET, PRESETS, PatchParams, SliceParams
-from core.props import boxes
-from core.terrain import Terrain
+from core.params import DEFAULT_PRESET, PRESETS, PatchParams
 
 
 @dataclass(frozen=True)
-class CameraSpec:
-    eye: tuple[float, float, float]
-    target: tuple[float, float, float]
-    far: float = 500.0
-    near: float = 0.02
-
-    def camera(self) -> Camera:
-        return Camera.from_eye_target(self.eye, self.target, near=self.near, far=self.far)
-
-
-@dataclass(frozen=True)
-class GrassType:
-    """A further grass type on the scene's terrain (thesis 6.4.5): its own patch, LOD levels
-    and channel of the density map; it shares the terrain and the light and colour maps."""
+class GrassRecipe:
+    """A further grass type of a built-in scene: its patch, LOD levels, density channel and how
+    its density map is made."""
 
     name: str
     params: PatchParams
@@ -42,13 +27,11 @@ class GrassType:
     channel: int  # 1 … 3: the density map's channel (0 is the scene's first grass)
     density_map: Callable[[int, int], np.ndarray] | None = None  # (width, height) -> 0 … 1
 
-    def __post_init__(self) -> None:
-        if not 1 <= self.channel <= 3:
-            raise ValueError(f"grass type {self.name}: density channel must be 1, 2 or 3")
-
 
 @dataclass(frozen=True, eq=False)
 class Scene:
+    """A built-in scene: what `document()` builds a new project from."""
+
     name: str
     description: str
     params: PatchParams
@@ -62,50 +45,36 @@ class Scene:
     # (width, height) -> RGBA colour-modulation map replacing the procedural one
     colour_map: Callable[[int, int], np.ndarray] | None = None
     map_size: tuple[int, int] = (256, 256)
-    props: tuple = ()  # rows for core.props.boxes: ((x, z), (w, h, d), (r, g, b))
+    props: tuple = ()  # ((x, z), (w, h, d), (r, g, b)[, lift]) rows
     fog_distance: float = 160.0  # world units (core/lighting.py)
     paths: dict[str, tuple[CameraSpec, ...]] = field(default_factory=dict)  # for profiling
     # (width, height) -> (height, width) arrays in 0 … 1 for the stack's height and density maps
     height_map: Callable[[int, int], np.ndarray] | None = None
     height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
     density_map: Callable[[int, int], np.ndarray] | None = None
-    grass: tuple[GrassType, ...] = ()  # further grass types beside the first
-    # a project's painted maps (layers, rows, columns, 4): used instead of the builders above
-    stack: np.ndarray | None = None
-    slices: SliceParams = field(default_factory=SliceParams)  # how patches become slices
-    lighting: Lighting = field(default_factory=Lighting)  # sun and ambient (fog: fog_distance)
+    grass: tuple[GrassRecipe, ...] = ()  # further grass types beside the first
 
-    def light(self) -> Lighting:
-        """The scene's lighting with its fog distance."""
-        return dataclasses.replace(self.lighting, fog_distance=self.fog_distance)
-
-    def instances(self) -> np.ndarray:
-        return grid_instances(*self.grid, mirror_seed=self.mirror_seed)
-
-    def heights(self) -> np.ndarray | None:
-        """The height map as the GPU holds it (half floats), so that the terrain's bounding
-        volumes and the rendered ground agree to the last bit."""
-        if self.stack is not None:
-            h = self.stack[LAYER_INDEX["height"], :, :, 0] if self.height_scale > 0 else None
-            return None if h is None else h.astype(np.float16).astype(np.float32)
-        if self.height_map is None:
-            return None
-        h = np.asarray(self.height_map(*self.map_size), np.float32)
-        return h.astype(np.float16).astype(np.float32)
-
-    def terrain(self) -> Terrain:
-        return Terrain.centred(
-            *self.grid,
-            mirror_seed=self.mirror_seed,
-            heights=self.heights(),
-            height_scale=self.height_scale,
-            grass_height=self.params.patch_height,
+    def document(self) -> Document:
+        """A new project made from this scene."""
+        return Document(
+            self.name,
+            [
+                GrassType(MAIN_GRASS, self.params, self.lod, 0),
+                *(GrassType(g.name, g.params, g.lod, g.channel) for g in self.grass),
+            ],
+            TerrainSpec(*self.grid, self.mirror_seed, self.height_scale),
+            self._design_maps(),
+            description=self.description,
+            density=self.density,
+            light=Lighting(fog_distance=self.fog_distance),
+            cameras=self.cameras,
+            default_camera=self.default_camera,
+            paths=self.paths,
+            props=tuple(Prop(*row) for row in self.props),
         )
 
-    def design_maps(self) -> DesignMaps:
-        """The scene's design-map stack: procedural defaults until maps are painted."""
-        if self.stack is not None:
-            return DesignMaps.from_stack(self.stack)
+    def _design_maps(self) -> DesignMaps:
+        """Procedural defaults: colour variation, the height map, the density maps."""
         if self.colour_map is None:
             maps = DesignMaps.procedural(self.map_size[0], seed=self.params.seed, tint=self.tint)
             if maps.size != self.map_size:
@@ -113,53 +82,15 @@ class Scene:
         else:
             maps = DesignMaps(*self.map_size)
             maps.write("color", 0, 0, self.colour_map(*self.map_size))
-        heights = self.heights()
-        if heights is not None:
-            maps.write("height", 0, 0, heights)
+        if self.height_map is not None:
+            heights = np.asarray(self.height_map(*self.map_size), np.float32)
+            maps.write("height", 0, 0, heights.astype(np.float16).astype(np.float32))
         if self.density_map is not None:
             maps.write("density", 0, 0, self.density_map(*self.map_size))
         for kind in self.grass:
             if kind.density_map is not None:
                 maps.write("density", 0, 0, kind.density_map(*self.map_size), channel=kind.channel)
         return maps
-
-    def ground_at(self, x: float, z: float) -> float:
-        """World height of the ground at world (x, z)."""
-        heights = self.heights()
-        if heights is None:
-            return 0.0
-        from core.heights import bilinear
-
-        cols, rows = self.grid
-        u, v = (x + cols / 2) / cols, (z + rows / 2) / rows
-        return float(bilinear(heights, np.array([u]), np.array([v]))[0]) * self.height_scale
-
-    def prop_boxes(self) -> np.ndarray:
-        """The props, standing on the ground where they are (their lift added to it)."""
-        rows = []
-        for row in self.props:
-            (x, z), size, colour = row[:3]
-            lift = row[3] if len(row) > 3 else 0.0
-            rows.append(((x, z), size, colour, lift + self.ground_at(x, z)))
-        return boxes(rows)
-
-    def path_cameras(self, name: str, frames: int) -> list[Camera]:
-        """`frames` cameras spread along the named path."""
-        from core.paths import sample_path
-
-        keys = self.paths[name]
-        near = min(k.near for k in keys)
-        far = max(k.far for k in keys)
-        return [
-            Camera.from_eye_target(eye, target, near=near, far=far)
-            for eye, target in sample_path([(k.eye, k.target) for k in keys], frames)
-        ]
-
-    def camera(self, name: str | None = None) -> Camera:
-        name = name or self.default_camera
-        if name not in self.cameras:
-            raise KeyError(name)
-        return self.cameras[name].camera()
 
 
 SCENES: dict[str, Scene] = {
@@ -317,7 +248,7 @@ SCENES["meadow"] = Scene(
     height_scale=3.0,
     density_map=_meadow_path,
     grass=(
-        GrassType(
+        GrassRecipe(
             "tall meadow grass",
             PRESETS["long thin meadow grass"].replace(
                 blade_count=900, width_min=0.008, width_max=0.014, tip_color=(0.78, 0.72, 0.36)

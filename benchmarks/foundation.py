@@ -29,14 +29,14 @@ def patch_generation(runs: int = 7) -> dict:
 
 
 def geometry_frame(runs: int = 5, size: tuple[int, int] = (1024, 768)) -> dict:
-    from app.headless import HeadlessRenderer
     from app.scenes import get_scene
     from render.context import describe
+    from render.headless import HeadlessRenderer
 
-    scene = get_scene("patch-grid")
-    renderer = HeadlessRenderer()
-    patch = renderer.load(scene, scene.params)
-    camera = scene.camera()
+    doc = get_scene("patch-grid").document()
+    renderer = HeadlessRenderer(doc, mode="geometry")
+    patch = renderer.pipeline.layers[0].patch
+    camera = doc.camera()
     renderer.render(camera, size)  # warm up: shader JIT, buffers
     frames = [renderer.render(camera, size)[1] for _ in range(runs)]
     gl = describe(renderer.ctx)

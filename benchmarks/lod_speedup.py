@@ -15,18 +15,15 @@ SIZE = (1024, 768)
 
 
 def speedup(scene_name: str, camera_name: str, runs: int = 2) -> dict:
-    from app.headless import HeadlessRenderer
     from app.scenes import get_scene
+    from render.headless import HeadlessRenderer
 
-    scene = get_scene(scene_name)
-    renderer = HeadlessRenderer()
-    renderer.pipeline.set_lod(scene.lod)
-    renderer.pipeline.set_only("lod")
-    renderer.load(scene)
-    camera = scene.camera(camera_name)
+    doc = get_scene(scene_name).document()
+    renderer = HeadlessRenderer(doc)
+    camera = doc.camera(camera_name)
     out = {}
     for mode in ("lod", "geometry"):
-        renderer.pipeline.set_only(mode)
+        renderer.pipeline.set_mode(mode)
         renderer.render(camera, SIZE)
         out[mode] = statistics.median(renderer.render(camera, SIZE)[1].t_a_ms for _ in range(runs))
     renderer.release()

@@ -20,20 +20,18 @@ THESIS = {
 
 
 def macrocells(runs: int = 3) -> list[dict]:
-    from app.headless import HeadlessRenderer
     from app.scenes import get_scene
     from core.lod import LodConfig, LodLevel
+    from render.headless import HeadlessRenderer
 
-    scene = get_scene("bench")
-    renderer = HeadlessRenderer()
-    renderer.pipeline.set_only("lod")
-    renderer.load(scene)
-    camera = scene.camera()
+    doc = get_scene("bench").document()
+    renderer = HeadlessRenderer(doc)
+    camera = doc.camera()
     rows = []
     for representation, key in (("volume", "t_v_ms"), ("image", "t_i_ms")):
         base = None
         for size, thesis_ms in zip(SIZES, THESIS[representation], strict=True):
-            renderer.pipeline.set_lod(LodConfig((LodLevel(representation, 0.0, None, macro=size),)))
+            doc.set_lod(0, LodConfig((LodLevel(representation, 0.0, None, macro=size),)))
             renderer.render(camera, SIZE)  # warm-up
             frames = [renderer.render(camera, SIZE)[1] for _ in range(runs)]
             t = statistics.median(getattr(f, key) for f in frames)

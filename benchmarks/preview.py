@@ -14,15 +14,12 @@ SIZE = (950, 720)
 
 
 def preview(runs: int = 3) -> list[dict]:
-    from app.headless import HeadlessRenderer
     from app.scenes import get_scene
+    from render.headless import HeadlessRenderer
 
-    scene = get_scene("meadow")
-    renderer = HeadlessRenderer()
-    renderer.pipeline.set_lod(scene.lod)
-    renderer.pipeline.set_only("lod")
-    renderer.load(scene)
-    camera = scene.camera()
+    doc = get_scene("meadow").document()
+    renderer = HeadlessRenderer(doc)
+    camera = doc.camera()
     rows = []
     times = {}
     for skip in (True, False):

@@ -13,18 +13,16 @@ SIZE = (1024, 768)
 
 
 def representations(runs: int = 3) -> list[dict]:
-    from app.headless import HeadlessRenderer
     from app.scenes import get_scene
     from render.context import describe
+    from render.headless import HeadlessRenderer
 
-    scene = get_scene("bench")
-    renderer = HeadlessRenderer()
-    renderer.pipeline.set_only("volume")  # converts the slices once
-    renderer.load(scene)
-    camera = scene.camera()
+    doc = get_scene("bench").document()
+    renderer = HeadlessRenderer(doc, mode="volume")  # converts the slices once
+    camera = doc.camera()
     rows = []
     for only, key in (("geometry", "t_g_ms"), ("volume", "t_v_ms"), ("image", "t_i_ms")):
-        renderer.pipeline.set_only(only)
+        renderer.pipeline.set_mode(only)
         renderer.render(camera, SIZE)  # warm-up
         times = [getattr(renderer.render(camera, SIZE)[1], key) for _ in range(runs)]
         rows.append(

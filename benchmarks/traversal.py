@@ -30,10 +30,10 @@ def traversal(runs: int = 50) -> list[dict]:
     from core.terrain import Terrain
     from core.traversal import traverse
 
-    scene = get_scene("football")
+    scene = get_scene("football").document()
     rows = []
     start = time.perf_counter()
-    terrain = scene.terrain()
+    terrain = scene.terrain
     build_ms = (time.perf_counter() - start) * 1000.0
     rows.append(
         {
@@ -47,8 +47,8 @@ def traversal(runs: int = 50) -> list[dict]:
     for name in ("high", "player", "ant"):
         camera = scene.camera(name)
         frustum = Frustum.from_camera(camera, 4 / 3)
-        result = traverse(terrain, camera.eye, scene.lod, frustum)
-        times = _time(lambda c=camera, f=frustum: traverse(terrain, c.eye, scene.lod, f), runs)
+        result = traverse(terrain, camera.eye, scene.lod(0), frustum)
+        times = _time(lambda c=camera, f=frustum: traverse(terrain, c.eye, scene.lod(0), f), runs)
         rows.append(
             {
                 "name": f"football_t_q_{name}",
@@ -65,7 +65,7 @@ def traversal(runs: int = 50) -> list[dict]:
     camera = scene.camera("player")
     eye = np.array([0.0, 9.0, -2100.0])
     frustum = Frustum.from_view(eye, (0.0, 4.0, -1900.0), camera.fov_y, 4 / 3, 0.1, 5000.0)
-    times = _time(lambda: traverse(big, eye, scene.lod, frustum), max(runs // 5, 3))
+    times = _time(lambda: traverse(big, eye, scene.lod(0), frustum), max(runs // 5, 3))
     rows.append(
         {
             "name": "terrain_4096x4096",

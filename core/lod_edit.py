@@ -1,39 +1,12 @@
-"""Editing LOD levels (the designer's LOD zone editor): the levels of every grass type as a
-model that announces changes, and edits that give a valid LodConfig or raise ValueError with a
-message a person can act on (LodConfig checks the thesis's overlap rules)."""
+"""Editing LOD levels (the designer's LOD zone editor): edits of one grass type's levels that
+give a valid LodConfig or raise ValueError with a message a person can act on (LodConfig checks
+the thesis's overlap rules). The levels live in the document (core/document.py)."""
 
 from __future__ import annotations
 
 import dataclasses
 
-from psygnal import Signal
-
 from core.lod import LodConfig, LodLevel
-
-
-class LodDesign:
-    """LOD levels per grass type (0: the patch being designed). `changed(index, config)`."""
-
-    changed = Signal(int, object)
-
-    def __init__(self, names: list[str], configs: list[LodConfig]) -> None:
-        if len(names) != len(configs):
-            raise ValueError("one name per grass type")
-        self.names = list(names)
-        self._configs = list(configs)
-
-    def __len__(self) -> int:
-        return len(self._configs)
-
-    def __getitem__(self, index: int) -> LodConfig:
-        return self._configs[index]
-
-    def set(self, index: int, config: LodConfig) -> None:
-        if not isinstance(config, LodConfig):
-            raise TypeError("a grass type's LOD levels must be a LodConfig")
-        if config != self._configs[index]:
-            self._configs[index] = config
-            self.changed.emit(index, config)
 
 
 def with_levels(config: LodConfig, levels: list[LodLevel]) -> LodConfig:

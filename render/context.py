@@ -35,10 +35,10 @@ def describe(ctx: moderngl.Context) -> str:
     return f"{info['GL_RENDERER']} / {info['GL_VERSION']} (max samples {ctx.max_samples})"
 
 
-def read_rgb(fbo: moderngl.Framebuffer, size: tuple[int, int]) -> np.ndarray:
-    """An (h, w, 3) uint8 image of a framebuffer, top row first."""
-    raw = fbo.read(viewport=(0, 0, *size), components=3, alignment=1)
-    image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], 3)[::-1]
+def read_rgb(fbo: moderngl.Framebuffer, size: tuple[int, int], components: int = 3) -> np.ndarray:
+    """An (h, w, 3) uint8 image of a framebuffer, top row first (4 components: with alpha)."""
+    raw = fbo.read(viewport=(0, 0, *size), components=components, alignment=1)
+    image = np.frombuffer(raw, dtype=np.uint8).reshape(size[1], size[0], components)[::-1]
     return np.ascontiguousarray(image)
 
 

@@ -18,12 +18,13 @@ from core.design_maps import DesignMaps
 from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
-from core.lod import LodConfig
+from core.lod import REPRESENTATIONS, LodConfig
 from core.occupancy import DensityOccupancy
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.stats import FrameStats
 from core.terrain import Terrain
+from core.view_mode import ViewMode
 from render.context import release_framebuffer
 from render.conversion import PatchConverter
 from render.design_maps import DesignMapTextures, union
@@ -38,11 +39,7 @@ from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
 
-# "lod": zones by distance; "compare": the three side by side (the thesis's viewer tool);
-# otherwise one representation draws every cell
-MODES = ("geometry", "volume", "image", "lod", "compare")
 PREVIEW_SCALE = 2  # preview frames are drawn at 1 / 2 of the width and height
-SINGLE = ("geometry", "volume", "image")
 
 
 class FramePipeline:
@@ -50,11 +47,11 @@ class FramePipeline:
         self.ctx = ctx
         self.samples = max(0, min(samples, ctx.max_samples))
         # one layer per grass type (thesis 6.4.5); the first is the patch being designed
-        self.layers: list[GrassLayer] = [GrassLayer(ctx, 0)]
+        self.layers: list[GrassLayer] = [GrassLayer(ctx, 0)]  # set_grass_types replaces it
         self.ground = GroundRenderer(ctx)
         self.props = PropRenderer(ctx)
         self.overlay = OverlayRenderer(ctx)  # brush outline, LOD rings: drawn last, untimed
-        self.only = "geometry"  # one of MODES
+        self.mode = ViewMode.GEOMETRY
         self.view = "shaded"  # shaded | techniques
         self.slice_params = SliceParams()
         # True: slices are converted here, at once, when a mode needs them (command line, tests).
@@ -86,10 +83,6 @@ class FramePipeline:
         return self.layers[0].image
 
     @property
-    def volumes(self) -> dict[int, VolumeRenderer]:
-        return self.layers[0].volumes
-
-    @property
     def volume(self) -> VolumeRenderer:
         """The volume renderer of the designer's slice count (volume-only and compare modes)."""
         return self.layers[0].volume(self.slice_params.slices)
@@ -98,49 +91,35 @@ class FramePipeline:
     def lod(self) -> LodConfig:
         return self.layers[0].lod
 
-    @lod.setter
-    def lod(self, config: LodConfig) -> None:
-        self.layers[0].lod = config
-
-    # -- scene state -------------------------------------------------------------------------
-    def set_patch(self, patch: GrassPatch) -> None:
-        self.layers[0].geometry.set_patch(patch)
-        self._convert()
-
-    def set_grass_types(self, types: list[tuple[GrassPatch, LodConfig, int]]) -> None:
-        """Further grass types beside the first: (patch, LOD levels, density-map channel)."""
-        for layer in self.layers[1:]:
+    # -- scene state (render/binding.py keeps it in step with the document) -------------------
+    def set_grass_types(self, types: list[tuple[LodConfig, int]]) -> None:
+        """One layer per grass type: (LOD levels, density-map channel); patches follow."""
+        density = self.geometry.density
+        for layer in self.layers:
             layer.release()
-        self.layers = self.layers[:1]
-        for patch, lod, channel in types:
+        self.layers = []
+        for lod, channel in types:
             layer = GrassLayer(self.ctx, channel)
             layer.lod = lod
-            layer.geometry.set_patch(patch)
             layer.set_instances(self._instances)
-            layer.set_density(self.geometry.density)
+            layer.set_density(density)
             self.layers.append(layer)
-        self._convert()
 
-    def set_only(self, only: str) -> None:
-        if only not in MODES:
-            raise ValueError(f"unknown representation {only!r}; use {', '.join(MODES)}")
-        self.only = only
+    def set_mode(self, mode: str) -> None:
+        """How the cells are drawn: a ViewMode (core/view_mode.py)."""
+        self.mode = ViewMode.parse(mode)
         self._convert()
-        if only != "lod":  # a single representation draws every cell again
+        if self.mode != ViewMode.LOD:  # a single representation draws every cell again
             for renderer in (self.geometry, self.volume, self.image):
                 renderer.set_instances(self._instances)
 
-    def set_lod(self, lod: LodConfig) -> None:
-        self.lod = lod
-        self._convert()
-
     def set_layer_patch(self, index: int, patch: GrassPatch) -> None:
-        """A new patch for one grass type (0: the designed patch)."""
+        """A new patch for one grass type (0: the first)."""
         self.layers[index].geometry.set_patch(patch)
         self._convert()
 
     def set_layer_lod(self, index: int, lod: LodConfig) -> None:
-        """The LOD levels of one grass type (0: the designed patch), patch and slices kept."""
+        """The LOD levels of one grass type, patch and slices kept."""
         self.layers[index].lod = lod
         self._convert()
 
@@ -155,12 +134,8 @@ class FramePipeline:
         return [
             (i, n)
             for i, layer in enumerate(self.layers)
-            for n in layer.missing_slices(self.only, self.slice_params)
+            for n in layer.missing_slices(self.mode, self.slice_params)
         ]
-
-    def missing_slices(self) -> list[int]:
-        """Slice counts the first grass type still needs."""
-        return self.layers[0].missing_slices(self.only, self.slice_params)
 
     @property
     def needs_slices(self) -> bool:
@@ -183,7 +158,7 @@ class FramePipeline:
         if not self.auto_convert:
             return
         for layer in self.layers:
-            layer.convert(self.converter, self.only, self.slice_params)
+            layer.convert(self.converter, self.mode, self.slice_params)
 
     def set_props(self, props: np.ndarray) -> None:
         """Boxes standing in the grass (core/props.py), drawn with the ground."""
@@ -286,13 +261,13 @@ class FramePipeline:
         if measure:
             ctx.finish()
         stats.t_o_ms = (time.perf_counter() - t0) * 1000.0
-        if self.only == "compare":  # three columns, one representation each
+        if self.mode == ViewMode.COMPARE:  # three columns, one representation each
             edges = [round(dw * k / 3) for k in range(4)]
-            for k, mode in enumerate(SINGLE):
+            for k, mode in enumerate(REPRESENTATIONS):
                 region = (edges[k], 0, edges[k + 1] - edges[k], dh)
                 self._draw(camera, region, mode, stats, measure)
         else:
-            self._draw(camera, (0, 0, dw, dh), self.only, stats, measure)
+            self._draw(camera, (0, 0, dw, dh), self.mode, stats, measure)
         t1 = time.perf_counter()
         if preview:
             self._present(fbo, out, size)

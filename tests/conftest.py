@@ -1,4 +1,6 @@
-"""Shared fixtures: one standalone EGL context for the session, GL error checks per test.
+"""Shared fixtures: one standalone EGL context for the session, GL error checks per test, and
+`headless`, which makes a fresh renderer for a document on that context (released after the
+test). Nothing here imports GL or Qt at import time: tests/core runs without either.
 
 Tests marked `gui` (real windows under Xvfb) must run in a process of their own: Mesa cannot hold
 the standalone EGL context and Qt's GLX widget context in one process. `make test` runs
@@ -10,11 +12,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from render import context
-
 
 @pytest.fixture(scope="session")
 def gl_ctx():
+    from render import context
+
     ctx = context.standalone()
     yield ctx
     ctx.release()
@@ -29,13 +31,21 @@ def ctx(gl_ctx):
     gl_ctx.disable(gl_ctx.DEPTH_TEST | gl_ctx.CULL_FACE | gl_ctx.BLEND)
 
 
-@pytest.fixture(scope="session")
-def headless(gl_ctx):
-    from app.headless import HeadlessRenderer
+@pytest.fixture
+def headless(ctx):
+    """headless(document, mode=..., view=...) -> a HeadlessRenderer on the shared context."""
+    from render.headless import HeadlessRenderer
 
-    renderer = HeadlessRenderer(gl_ctx)
-    yield renderer
-    renderer.release()
+    made = []
+
+    def make(document, **kwargs):
+        renderer = HeadlessRenderer(document, ctx, **kwargs)
+        made.append(renderer)
+        return renderer
+
+    yield make
+    for renderer in made:
+        renderer.release()
 
 
 def grass_mask(image: np.ndarray) -> np.ndarray:

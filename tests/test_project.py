@@ -8,11 +8,11 @@ import zipfile
 import numpy as np
 import pytest
 
-from app import project
-from app.project import ProjectError, load_project, save_project
 from app.scenes import get_scene
+from core import project_file
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
+from core.project_file import ProjectError, load_project, save_project
 
 SIZE = (160, 100)
 
@@ -25,44 +25,38 @@ def meadow():
 
 def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     path = tmp_path / "meadow.sward"
-    maps = meadow.design_maps()
-    maps.write("color", 10, 10, np.full((5, 5, 4), 0.25))  # something painted
-    lod = LodConfig((LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8)))
-    light = Lighting(sun_elevation=20.0, sun_azimuth=300.0, ambient_color=(0.2, 0.3, 0.4))
-    scene = dataclasses.replace(
-        meadow, lod=lod, slices=meadow.slices.replace(slices=4, top=256), lighting=light
-    )
-    save_project(path, scene, maps)
+    doc = meadow.document()
+    doc.maps.write("color", 10, 10, np.full((5, 5, 4), 0.25))  # something painted
+    doc.set_lod(0, LodConfig((LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8))))
+    doc.light = Lighting(sun_elevation=20.0, sun_azimuth=300.0, ambient_color=(0.2, 0.3, 0.4))
+    doc.slices = doc.slices.replace(slices=4, top=256)
+    save_project(path, doc)
     loaded = load_project(path)
-    assert loaded.lighting == light
-    assert loaded.params == scene.params and loaded.lod == lod and loaded.slices == scene.slices
-    assert loaded.grass == tuple(dataclasses.replace(g, density_map=None) for g in scene.grass)
-    assert loaded.cameras == scene.cameras and loaded.paths == scene.paths
-    assert loaded.grid == scene.grid and loaded.height_scale == scene.height_scale
-    assert np.array_equal(loaded.design_maps().stack, maps.stack)
-    assert np.array_equal(loaded.terrain().cell_max, scene.terrain().cell_max)
-    assert np.array_equal(loaded.prop_boxes(), scene.prop_boxes())
+    assert loaded.same_as(doc)
+    assert np.array_equal(loaded.terrain.cell_max, doc.terrain.cell_max)
+    assert np.array_equal(loaded.prop_boxes(), doc.prop_boxes())
 
 
-def test_a_reopened_project_renders_the_same_image(tmp_path, headless, ctx, meadow):
+def test_a_reopened_project_renders_the_same_image_with_its_lod(tmp_path, headless, meadow):
+    """The LOD levels come with the project: a reopened project with edited levels draws what
+    the edited document drew, not what the scene's own levels draw."""
     path = tmp_path / "p.sward"
-    save_project(path, meadow)
-    camera = meadow.camera()
-    headless.pipeline.set_only("lod")
-    headless.pipeline.set_lod(meadow.lod)
-    headless.load(meadow)
-    a, sa = headless.render(camera, SIZE)
-    headless.load(load_project(path))
-    b, sb = headless.render(camera, SIZE)
-    headless.load(get_scene("patch-grid"))
-    headless.pipeline.set_only("geometry")
+    doc = meadow.document()
+    camera = doc.camera()
+    before, s0 = headless(doc).render(camera, SIZE)
+    doc.set_lod(0, LodConfig((LodLevel("geometry", 0, 12), LodLevel("image", 9, None, macro=4))))
+    a, sa = headless(doc).render(camera, SIZE)
+    save_project(path, doc)
+    b, sb = headless(load_project(path)).render(camera, SIZE)
     assert (sa.c_g, sa.c_v, sa.c_i, sa.blades) == (sb.c_g, sb.c_v, sb.c_i, sb.blades)
-    assert np.abs(a.astype(int) - b.astype(int)).mean() < 1.0
+    assert np.array_equal(a, b)
+    assert (s0.c_g, s0.c_v, s0.c_i) != (sa.c_g, sa.c_v, sa.c_i)  # the edit mattered
+    assert np.abs(before.astype(int) - a.astype(int)).max() > 20
 
 
 def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
     good = tmp_path / "good.sward"
-    save_project(good, meadow)
+    save_project(good, meadow.document())
     cases = {}
     cases["text.sward"] = b"just some text"
     cases["truncated.sward"] = good.read_bytes()[: len(good.read_bytes()) // 2]
@@ -101,14 +95,16 @@ def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
 
 def test_a_failed_save_leaves_the_old_file(tmp_path, meadow, monkeypatch):
     path = tmp_path / "keep.sward"
-    save_project(path, meadow)
+    doc = meadow.document()
+    save_project(path, doc)
     before = path.read_bytes()
 
     def broken(*args, **kwargs):
         raise OSError("disk full")
 
-    monkeypatch.setattr(project.np, "savez_compressed", broken)
+    monkeypatch.setattr(project_file.np, "savez_compressed", broken)
+    doc.density = 0.5
     with pytest.raises(ProjectError, match=r"cannot save .*keep.sward: disk full"):
-        save_project(path, dataclasses.replace(meadow, density=0.5))
+        save_project(path, doc)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["keep.sward"]  # no temporary left over

@@ -20,8 +20,9 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.document import Document
 from core.lod import REPRESENTATIONS, LodConfig
-from core.lod_edit import LodDesign, append_level, move_level, remove_level, set_field
+from core.lod_edit import append_level, move_level, remove_level, set_field
 from core.params import SLICE_COUNTS
 from core.stats import FrameStats
 
@@ -42,9 +43,9 @@ class LodPanel(QWidget):
     lod_edited = Signal(int, object)  # grass type, LodConfig
     zones_toggled = Signal(bool)
 
-    def __init__(self, model: LodDesign, parent=None) -> None:
+    def __init__(self, document: Document, parent=None) -> None:
         super().__init__(parent)
-        self.model = model
+        self.document = document
         self.type_box = QComboBox()
         self.type_box.currentIndexChanged.connect(self.refresh)
         self.table = QTableWidget(0, len(COLUMNS))
@@ -75,19 +76,23 @@ class LodPanel(QWidget):
         layout.addLayout(buttons)
         layout.addWidget(self.zones_box)
         layout.addWidget(self.message)
-        model.changed.connect(self._on_model_changed)
-        self.set_model(model)
+        document.events.lod.connect(self._on_lod_changed)
+        self.set_document(document)
 
-    def set_model(self, model: LodDesign) -> None:
-        if model is not self.model:
-            self.model.changed.disconnect(self._on_model_changed)
-            model.changed.connect(self._on_model_changed)
-            self.model = model
+    def set_document(self, document: Document) -> None:
+        if document is not self.document:
+            self.document.events.lod.disconnect(self._on_lod_changed)
+            document.events.lod.connect(self._on_lod_changed)
+            self.document = document
         self.type_box.blockSignals(True)
         self.type_box.clear()
-        self.type_box.addItems(model.names)
+        self.type_box.addItems(document.grass_names)
         self.type_box.blockSignals(False)
         self.refresh()
+
+    def closeEvent(self, event) -> None:
+        self.document.events.lod.disconnect(self._on_lod_changed)
+        super().closeEvent(event)
 
     @property
     def grass_type(self) -> int:
@@ -95,14 +100,14 @@ class LodPanel(QWidget):
 
     @property
     def config(self) -> LodConfig:
-        return self.model[self.grass_type]
+        return self.document.lod(self.grass_type)
 
     def _row(self) -> int:
         rows = self.table.selectionModel().selectedRows()
         return rows[0].row() if rows else self.table.rowCount() - 1
 
     # -- model -> widgets --------------------------------------------------------------------
-    def _on_model_changed(self, index: int, _config) -> None:
+    def _on_lod_changed(self, index: int, _config) -> None:
         if index == self.grass_type:
             self.refresh()
 
@@ -170,9 +175,6 @@ class LodPanel(QWidget):
             item = self.table.item(i, 5)
             if item is not None:
                 item.setText(f"{n:,}")
-
-    def begin_box(self, level: int) -> QDoubleSpinBox:
-        return self.table.cellWidget(level, 2)
 
     def end_box(self, level: int) -> QDoubleSpinBox:
         return self.table.cellWidget(level, 3)

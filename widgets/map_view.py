@@ -32,10 +32,10 @@ class _PaintableImage(pg.ImageItem):
         pos = ev.pos()
         if ev.isStart():
             start = ev.buttonDownPos()
-            self.view.pressed.emit(start.x(), start.y(), ev.modifiers())
-        self.view.moved.emit(pos.x(), pos.y())
+            self.view.paint_pressed.emit(start.x(), start.y(), ev.modifiers())
+        self.view.paint_moved.emit(pos.x(), pos.y())
         if ev.isFinish():
-            self.view.released.emit()
+            self.view.paint_released.emit()
         self.view.show_brush(pos.x(), pos.y())
 
     def mouseClickEvent(self, ev) -> None:
@@ -44,8 +44,8 @@ class _PaintableImage(pg.ImageItem):
             return
         ev.accept()
         pos = ev.pos()
-        self.view.pressed.emit(pos.x(), pos.y(), ev.modifiers())
-        self.view.released.emit()
+        self.view.paint_pressed.emit(pos.x(), pos.y(), ev.modifiers())
+        self.view.paint_released.emit()
 
     def hoverEvent(self, ev) -> None:
         if not ev.isExit():
@@ -53,9 +53,9 @@ class _PaintableImage(pg.ImageItem):
 
 
 class MapView(QWidget):
-    pressed = Signal(float, float, object)  # texel column, row, keyboard modifiers
-    moved = Signal(float, float)
-    released = Signal()
+    paint_pressed = Signal(float, float, object)  # texel column, row, keyboard modifiers
+    paint_moved = Signal(float, float)
+    paint_released = Signal()
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)

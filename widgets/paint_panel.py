@@ -125,6 +125,14 @@ class PaintPanel(QWidget):
         data = self.layer_box.currentData()
         return tuple(data) if data else ("density", 0)
 
+    @property
+    def target_label(self) -> str:
+        """The chosen map as the Map box names it (for the undo history)."""
+        return self.layer_box.currentText()
+
+    def show_message(self, text: str) -> None:
+        self.message.setText(text)
+
     def select(self, layer: str, channel: int | None = None) -> None:
         """Paint this map next (channel: a grass type's density, or ALL_TYPES)."""
         for i in range(self.layer_box.count()):

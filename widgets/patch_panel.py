@@ -10,7 +10,7 @@ from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
-from core.design import PatchDesign
+from core.document import Document
 from core.params import (
     PRESETS,
     SLICE_COUNTS,
@@ -73,15 +73,15 @@ def _field_param(f: dataclasses.Field, value) -> dict:
 
 
 class PatchPanel(QWidget):
-    params_edited = Signal(object)  # PatchParams of the grass type shown (self.blades)
-    grass_type_changed = Signal(int)
+    params_edited = Signal(int, object)  # grass type, PatchParams
     density_edited = Signal(float)
     slices_edited = Signal(object)  # SliceParams
 
-    def __init__(self, design: PatchDesign, parent=None) -> None:
+    def __init__(self, document: Document, parent=None) -> None:
         super().__init__(parent)
-        self.design = design  # density and slices; blade parameters of the first grass type
-        self.blades = design  # the grass type whose blade parameters are shown
+        self.document = document
+        self.grass_type = 0  # whose blade parameters are shown
+        params = document.params(0)
         fields = dataclasses.fields(PatchParams)
         children = [
             {
@@ -96,13 +96,13 @@ class PatchPanel(QWidget):
                 "title": "Preset",
                 "type": "list",
                 "limits": [*PRESETS, CUSTOM],
-                "value": self._preset_of(design.params),
+                "value": self._preset_of(params),
             },
             {
                 "name": "density",
                 "title": "Global density",
                 "type": "float",
-                "value": design.density,
+                "value": document.density,
                 "limits": (0.0, 1.0),
                 "step": 0.05,
             },
@@ -110,13 +110,13 @@ class PatchPanel(QWidget):
                 "name": "blades",
                 "title": "Blades",
                 "type": "group",
-                "children": [_field_param(f, getattr(design.params, f.name)) for f in fields],
+                "children": [_field_param(f, getattr(params, f.name)) for f in fields],
             },
             {
                 "name": "conversion",
                 "title": "Slices (volume and image-based)",
                 "type": "group",
-                "children": _slice_children(design.slices),
+                "children": _slice_children(document.slices),
             },
         ]
         self.root = Parameter.create(name="patch", type="group", children=children)
@@ -131,9 +131,31 @@ class PatchPanel(QWidget):
         layout.addWidget(self.message)
         self._updating = False
         self.root.sigTreeStateChanged.connect(self._on_tree_changed)
-        design.params_changed.connect(self._on_params_changed)
-        design.density_changed.connect(self._on_density_changed)
-        design.slices_changed.connect(self._on_slices_changed)
+        self._connect(document)
+        self._show_grass_types()
+
+    def _connect(self, document: Document) -> None:
+        document.events.params.connect(self._on_params_changed)
+        document.events.density.connect(self._on_density_changed)
+        document.events.slices.connect(self._on_slices_changed)
+
+    def _disconnect(self) -> None:
+        events = self.document.events
+        events.params.disconnect(self._on_params_changed)
+        events.density.disconnect(self._on_density_changed)
+        events.slices.disconnect(self._on_slices_changed)
+
+    def set_document(self, document: Document) -> None:
+        """Show another project (File > Open): every control from the new document."""
+        self._disconnect()
+        self.document = document
+        self._connect(document)
+        self.grass_type = 0
+        self._show_grass_types()
+        self.message.setText("")
+        self._show(document.params(0))
+        self._on_density_changed(document.density)
+        self._on_slices_changed(document.slices)
 
     @staticmethod
     def _preset_of(params: PatchParams) -> str:
@@ -142,25 +164,22 @@ class PatchPanel(QWidget):
                 return name
         return CUSTOM
 
-    def set_grass_types(self, names: list[str]) -> None:
+    def _show_grass_types(self) -> None:
+        names = self.document.grass_names
         self._updating = True
         try:
             param = self.root.child("grass_type")
             param.setLimits({name: i for i, name in enumerate(names)})
-            param.setValue(0)
+            param.setValue(self.grass_type)
             param.setOpts(visible=len(names) > 1)
         finally:
             self._updating = False
 
-    def set_blade_model(self, model: PatchDesign) -> None:
+    def show_grass_type(self, index: int) -> None:
         """Show and edit the blade parameters of another grass type."""
-        if model is self.blades:
-            return
-        self.blades.params_changed.disconnect(self._on_params_changed)
-        self.blades = model
-        model.params_changed.connect(self._on_params_changed)
+        self.grass_type = index
         self.message.setText("")
-        self._show(model.params)
+        self._show(self.document.params(index))
 
     def param(self, name: str) -> Parameter:
         if name in ("preset", "density", "grass_type"):
@@ -178,31 +197,32 @@ class PatchPanel(QWidget):
                 continue
             name = param.name()
             if name == "grass_type":
-                self.grass_type_changed.emit(int(value))
+                self.show_grass_type(int(value))
             elif name == "preset":
                 if value in PRESETS:
-                    self.params_edited.emit(PRESETS[value])
+                    self.params_edited.emit(self.grass_type, PRESETS[value])
             elif name == "density":
                 self.density_edited.emit(float(value))
             elif name in ("slices", "top"):
-                self.slices_edited.emit(self.design.slices.replace(**{name: int(value)}))
+                self.slices_edited.emit(self.document.slices.replace(**{name: int(value)}))
             elif name == "slice_size":
                 w, h = SIZE_LABELS[value]
-                self.slices_edited.emit(self.design.slices.replace(width=w, height=h))
+                self.slices_edited.emit(self.document.slices.replace(width=w, height=h))
             else:
                 self._edit_field(name, value)
 
     def _edit_field(self, name: str, value) -> None:
         if isinstance(value, QColor):
             value = (round(value.redF(), 4), round(value.greenF(), 4), round(value.blueF(), 4))
+        current = self.document.params(self.grass_type)
         try:
-            params = self.blades.params.replace(**{name: value})
+            params = current.replace(**{name: value})
         except ParameterError as exc:
             self.message.setText(str(exc))
-            self._show(self.blades.params)  # revert the control to the model
+            self._show(current)  # revert the control to the model
             return
         self.message.setText("")
-        self.params_edited.emit(params)
+        self.params_edited.emit(self.grass_type, params)
 
     # -- model → widget ----------------------------------------------------------------------
     def _show(self, params: PatchParams) -> None:
@@ -217,9 +237,10 @@ class PatchPanel(QWidget):
         finally:
             self._updating = False
 
-    def _on_params_changed(self, params: PatchParams) -> None:
-        self.message.setText("")
-        self._show(params)
+    def _on_params_changed(self, index: int, params: PatchParams) -> None:
+        if index == self.grass_type:
+            self.message.setText("")
+            self._show(params)
 
     def _on_density_changed(self, density: float) -> None:
         self._updating = True
@@ -238,7 +259,5 @@ class PatchPanel(QWidget):
             self._updating = False
 
     def closeEvent(self, event) -> None:
-        self.blades.params_changed.disconnect(self._on_params_changed)
-        self.design.density_changed.disconnect(self._on_density_changed)
-        self.design.slices_changed.disconnect(self._on_slices_changed)
+        self._disconnect()
         super().closeEvent(event)

@@ -8,6 +8,7 @@ then once more at full quality.
 
 from __future__ import annotations
 
+import contextlib
 from typing import ClassVar
 
 import numpy as np
@@ -16,15 +17,13 @@ from PySide6.QtGui import QSurfaceFormat
 from PySide6.QtOpenGLWidgets import QOpenGLWidget
 
 from core.camera import Camera
-from core.design_maps import DesignMaps
-from core.lighting import Lighting
-from core.lod import LodConfig
-from core.params import SliceParams
+from core.document import Document
 from core.patch import GrassPatch
 from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, zone_rings
 from core.stats import FrameStats
-from core.terrain import Terrain
+from core.view_mode import ViewMode
 from render import context
+from render.binding import DocumentBinding, PatchRequest
 from render.context import release_framebuffer
 from render.frame import FramePipeline
 from widgets.slice_builder import SliceBuilder
@@ -59,26 +58,23 @@ class GrassViewport(QOpenGLWidget):
         {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
     )
 
-    def __init__(self, camera: Camera, parent=None) -> None:
+    def __init__(
+        self, document: Document, request_patch: PatchRequest | None = None, parent=None
+    ) -> None:
+        """`request_patch(index, params)` asks for a grass type's patch to be made off this
+        thread; it comes back through `set_patch`."""
         super().__init__(parent)
         self.setFormat(gl_format())
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
         self.setMinimumSize(320, 240)
-        self.camera = camera
+        self.document = document
+        self.camera = document.camera()
+        self._request_patch = request_patch
         self.ctx = None
         self.pipeline: FramePipeline | None = None
-        self._patch: GrassPatch | None = None
-        self._instances: np.ndarray | None = None
-        self._terrain: Terrain | None = None
-        self._density = 1.0
-        self._mode = "lod"
+        self.binding: DocumentBinding | None = None
+        self._mode = ViewMode.LOD
         self._view = "shaded"
-        self._lod = LodConfig()
-        self._slice_params = SliceParams()
-        self._maps: DesignMaps | None = None
-        self._props: np.ndarray | None = None
-        self._lighting: Lighting | None = None
-        self._grass_types: list = []
         self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
@@ -100,20 +96,47 @@ class GrassViewport(QOpenGLWidget):
         self._settle.setInterval(300)
         self._settle.timeout.connect(self.update)
 
-    # -- scene state (may arrive before the GL context exists) ------------------------------
-    def set_patch(self, patch: GrassPatch) -> None:
-        self._patch = patch
-        self._upload(lambda pipeline: pipeline.set_patch(patch))
-        self.slices.schedule()
+    # -- the document (render/binding.py keeps the pipeline in step with it) ---------------
+    def set_document(self, document: Document) -> None:
+        """Show another project; its grass, maps and terrain reach the pipeline through one
+        new binding (at once, or in initializeGL if the GL context does not exist yet)."""
+        self.document = document
+        if self.pipeline is None:
+            return
+        self.binding.detach()
+        self.binding = DocumentBinding(
+            self.pipeline, document, self._request_patch, self._current, self._document_changed
+        )
+        self._document_changed()
+
+    def set_patch(self, index: int, patch: GrassPatch) -> None:
+        """A patch made off the window's thread for grass type `index` (stale ones are
+        dropped by the binding); before the GL context exists it is asked for again."""
+        if self.binding is not None:
+            self.binding.set_patch(index, patch)
+
+    @contextlib.contextmanager
+    def _current(self):
+        self.makeCurrent()
+        try:
+            yield
+        finally:
+            self.doneCurrent()
+
+    def _document_changed(self) -> None:
+        self.slices.schedule()  # a new patch, slice count or volume level may need slices
+        self.update()
 
     def set_mode(self, mode: str) -> None:
-        """lod | geometry | volume | image | compare (render/frame.py MODES)."""
-        self._mode = mode
-        self._upload(lambda pipeline: pipeline.set_only(mode))
-        self.slices.schedule()
+        """A ViewMode: lod | geometry | volume | image | compare."""
+        self._mode = ViewMode.parse(mode)
+        if self.pipeline is not None:
+            with self._current():
+                self.pipeline.set_mode(self._mode)
+        self._document_changed()
 
     @property
-    def mode(self) -> str:
+    def mode(self) -> ViewMode:
         return self._mode
 
     def set_view(self, view: str) -> None:
@@ -121,85 +144,6 @@ class GrassViewport(QOpenGLWidget):
         self._view = view
         if self.pipeline is not None:
             self.pipeline.view = view
-        self.update()
-
-    def set_lod(self, lod: LodConfig) -> None:
-        self._lod = lod
-        if self.pipeline is not None:
-            self.pipeline.set_lod(lod)
-        self.slices.schedule()  # a new volume level may need slices of another count
-        self.update()
-
-    def set_grass_patch(self, index: int, patch: GrassPatch) -> None:
-        """A new patch for a further grass type (1 …); its slices are converted again."""
-        _, lod, channel = self._grass_types[index - 1]
-        self._grass_types[index - 1] = (patch, lod, channel)
-        self._upload(lambda pipeline: pipeline.set_layer_patch(index, patch))
-        self.slices.schedule()
-
-    def set_layer_lod(self, index: int, lod: LodConfig) -> None:
-        """The LOD levels of one grass type (0: the designed patch)."""
-        if index == 0:
-            self.set_lod(lod)
-            return
-        patch, _, channel = self._grass_types[index - 1]
-        self._grass_types[index - 1] = (patch, lod, channel)
-        if self.pipeline is not None:
-            self.pipeline.set_layer_lod(index, lod)
-        self.slices.schedule()
-        self.update()
-
-    def set_slice_params(self, params: SliceParams) -> None:
-        self._slice_params = params
-        if self.pipeline is not None:
-            self.pipeline.set_slice_params(params)
-        self.slices.schedule()
-        self.update()
-
-    def set_props(self, props: np.ndarray) -> None:
-        self._props = props
-        self._upload(lambda pipeline: pipeline.set_props(props))
-
-    def set_grass_types(self, types: list) -> None:
-        """Further grass types: (patch, LOD levels, density channel) each."""
-        self._grass_types = list(types)
-        self._upload(lambda pipeline: pipeline.set_grass_types(types))
-        self.slices.schedule()
-
-    def set_lighting(self, lighting: Lighting) -> None:
-        """Sun, ambient light and fog (core/lighting.py)."""
-        self._lighting = lighting
-        if self.pipeline is not None:
-            self.pipeline.lighting = lighting
-        self.update()
-
-    def set_design_maps(self, maps: DesignMaps) -> None:
-        self._maps = maps
-        self._upload(lambda pipeline: pipeline.set_design_maps(maps))
-
-    def set_instances(self, instances: np.ndarray) -> None:
-        self._instances = instances
-        self._terrain = None
-        self._upload(lambda pipeline: pipeline.set_instances(instances))
-
-    def set_terrain(self, terrain: Terrain) -> None:
-        self._terrain = terrain
-        self._instances = None
-        self._upload(lambda pipeline: pipeline.set_terrain(terrain))
-
-    def _upload(self, fn) -> None:
-        """Run a GL upload with this widget's context current (later, in initializeGL, if
-        the context does not exist yet), then schedule a frame."""
-        if self.pipeline is not None:
-            self.makeCurrent()
-            fn(self.pipeline)
-            self.doneCurrent()
-        self.update()
-
-    def set_density(self, density: float) -> None:
-        self._density = density
-        if self.pipeline is not None:
-            self.pipeline.set_density(density)
         self.update()
 
     def set_camera(self, camera: Camera) -> None:
@@ -231,28 +175,27 @@ class GrassViewport(QOpenGLWidget):
 
     def ground_at(self, x: float, y: float) -> np.ndarray | None:
         """The world point of the ground under widget position (x, y), or None."""
-        if self._terrain is None:
-            return None
+        terrain, maps = self.document.terrain, self.document.maps
         ray = pixel_ray(self.camera, x, y, max(self.width(), 1), max(self.height(), 1))
         # the height map as painted so far: the terrain follows it only after the stroke
-        heights = None
-        if self._maps is not None and self._terrain.height_scale > 0:
-            heights = self._maps.layer("height")[..., 0]
-        return ground_hit(self._terrain, *ray, heights=heights)
+        heights = maps.layer("height")[..., 0] if terrain.height_scale > 0 else None
+        return ground_hit(terrain, *ray, heights=heights)
 
     def texel_at(self, x: float, y: float) -> tuple[float, float] | None:
         """The design-map texel (column, row) under widget position (x, y), or None."""
         hit = self.ground_at(x, y)
-        if hit is None or self._maps is None:
+        if hit is None:
             return None
         self._hover = (float(hit[0]), float(hit[2]))
-        return world_to_texel(self._terrain, self._maps.size, self._hover[0], self._hover[1])
+        terrain, size = self.document.terrain, self.document.maps.size
+        return world_to_texel(terrain, size, self._hover[0], self._hover[1])
 
     def _update_outline(self) -> None:
         lines = []
-        if self.tool == "paint" and self._hover is not None and self._maps is not None:
-            radius = 0.5 * self.brush_size * self._terrain.columns / self._maps.size[0]
-            lines.append((ground_circle(self._terrain, *self._hover, radius), BRUSH_COLOR))
+        if self.tool == "paint" and self._hover is not None:
+            terrain = self.document.terrain
+            radius = 0.5 * self.brush_size * terrain.columns / self.document.maps.size[0]
+            lines.append((ground_circle(terrain, *self._hover, radius), BRUSH_COLOR))
         if self.pipeline is not None:
             self.pipeline.overlay.set_lines("brush", lines)
         self.update()
@@ -264,25 +207,12 @@ class GrassViewport(QOpenGLWidget):
         self.max_image_size = int(self.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
         pipeline = FramePipeline(self.ctx)
         pipeline.auto_convert = False  # self.slices converts step by step
-        pipeline.set_density(self._density)
         pipeline.view = self._view
-        pipeline.set_lod(self._lod)
-        pipeline.set_slice_params(self._slice_params)
-        if self._maps is not None:
-            pipeline.set_design_maps(self._maps)
-        if self._props is not None:
-            pipeline.set_props(self._props)
-        if self._lighting is not None:
-            pipeline.lighting = self._lighting
-        if self._patch is not None:
-            pipeline.set_patch(self._patch)
-        if self._grass_types:
-            pipeline.set_grass_types(self._grass_types)
-        if self._instances is not None:
-            pipeline.set_instances(self._instances)
-        if self._terrain is not None:
-            pipeline.set_terrain(self._terrain)
-        pipeline.set_only(self._mode)
+        pipeline.set_mode(self._mode)
+        # the context is current here already: no makeCurrent around the first synchronisation
+        self.binding = DocumentBinding(pipeline, self.document, self._request_patch)
+        self.binding.current = self._current
+        self.binding.changed = self._document_changed
         self.pipeline = pipeline
         QTimer.singleShot(0, self.slices.schedule)
 
@@ -292,8 +222,9 @@ class GrassViewport(QOpenGLWidget):
         ratio = self.devicePixelRatio()
         size = (max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio)))
         out = self.ctx.detect_framebuffer(self.defaultFramebufferObject())
-        if self.show_zones and self._terrain is not None:
-            rings = zone_rings(self._terrain, self.camera.eye, self.pipeline.lod.levels)
+        if self.show_zones:
+            levels = self.document.lod(0).levels
+            rings = zone_rings(self.document.terrain, self.camera.eye, levels)
             self.pipeline.overlay.set_lines(
                 "zones", [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
             )
@@ -425,7 +356,8 @@ class GrassViewport(QOpenGLWidget):
     def release_gl(self) -> None:
         self.slices.wait()
         if self.pipeline is not None:
-            self.makeCurrent()
-            self.pipeline.release()
+            self.binding.detach()
+            self.binding = None
+            with self._current():
+                self.pipeline.release()
             self.pipeline = None
-            self.doneCurrent()

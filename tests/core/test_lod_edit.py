@@ -3,7 +3,7 @@
 import pytest
 
 from core.lod import LodConfig
-from core.lod_edit import LodDesign, append_level, move_level, remove_level, set_field
+from core.lod_edit import append_level, move_level, remove_level, set_field
 
 THREE = LodConfig.zones(geometry_end=4.0, volume_end=12.0, transition=2.0)
 
@@ -38,13 +38,3 @@ def test_an_impossible_end_is_refused_with_the_rule():
     with pytest.raises(ValueError, match="increasing"):
         set_field(THREE, 0, "end", 20.0)  # geometry past the volume level's end
     assert set_field(THREE, 1, "end", 20.0).levels[1].end == 20.0
-
-
-def test_the_model_announces_only_real_changes():
-    model = LodDesign(["turf"], [THREE])
-    seen = []
-    model.changed.connect(lambda i, c: seen.append((i, c)))
-    model.set(0, THREE)
-    new = set_field(THREE, 1, "end", 20.0)
-    model.set(0, new)
-    assert seen == [(0, new)] and model[0] == new

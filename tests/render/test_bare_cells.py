@@ -12,22 +12,15 @@ from app.scenes import get_scene
 @pytest.fixture
 def half_bare(headless):
     scene = get_scene("patch-grid")
-    scene = dataclasses.replace(scene, params=scene.params.replace(blade_count=400))
-    headless.pipeline.set_lod(scene.lod)
-    headless.pipeline.set_only("lod")
-    headless.load(scene)
-    maps = scene.design_maps()
-    w, h = maps.size
-    maps.write("density", 0, 0, np.zeros((h, w // 2)))  # the left half is bare
-    headless.pipeline.set_design_maps(maps)
-    yield headless, scene
-    headless.pipeline.skip_bare_cells = True
-    headless.pipeline.set_only("geometry")
+    doc = dataclasses.replace(scene, params=scene.params.replace(blade_count=400)).document()
+    w, h = doc.maps.size
+    doc.maps.write("density", 0, 0, np.zeros((h, w // 2)))  # the left half is bare
+    return headless(doc), doc
 
 
 def test_bare_cells_are_not_drawn_and_the_image_is_unchanged(half_bare):
-    headless, scene = half_bare
-    camera = scene.camera("grazing")
+    headless, doc = half_bare
+    camera = doc.camera("grazing")
     image, skipped = headless.render(camera, (320, 240))
     headless.pipeline.skip_bare_cells = False
     full_image, full = headless.render(camera, (320, 240))
@@ -37,7 +30,7 @@ def test_bare_cells_are_not_drawn_and_the_image_is_unchanged(half_bare):
     assert (diff > 2).mean() < 0.001  # (a bare cell's rays no longer run on into its neighbour)
     # painting grass back makes the cells count again
     headless.pipeline.skip_bare_cells = True
-    maps = headless.pipeline.design.maps
+    maps = doc.maps
     maps.write("density", 0, 0, np.ones((maps.size[1], maps.size[0])))
     _, repainted = headless.render(camera, (320, 240))
     assert repainted.c_g + repainted.c_v + repainted.c_i == full.c_g + full.c_v + full.c_i

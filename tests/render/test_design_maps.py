@@ -1,12 +1,13 @@
 """The design-map stack reaches every representation: density, colour modulation, aperiodic
 tiling (thesis 6.3-6.4), and edits upload only their rectangle."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from app.scenes import get_scene
 from core.design_maps import LAYER_INDEX, DesignMaps
-from core.grid import grid_instances
 from core.params import PatchParams
 from render.design_maps import DesignMapTextures
 from tests.conftest import covered
@@ -29,13 +30,11 @@ def window(image, centre, half=12):
     return image[r - half : r + half, c - half : c + half]
 
 
-@pytest.fixture
-def scene(headless):
-    headless.load(SCENE, PARAMS)
-    yield headless.pipeline
-    headless.pipeline.set_design_maps(DesignMaps(1))
-    headless.pipeline.set_instances(SCENE.instances())
-    headless.pipeline.set_only("geometry")
+def document(**changes):
+    """The patch grid with neutral 64 × 64 maps (no colour variation)."""
+    doc = dataclasses.replace(SCENE, params=PARAMS, map_size=(64, 64), **changes).document()
+    doc.maps.stack[:] = DesignMaps(64).stack
+    return doc
 
 
 def test_an_edit_uploads_its_rectangle_only(ctx):
@@ -55,18 +54,16 @@ def test_an_edit_uploads_its_rectangle_only(ctx):
 
 
 @pytest.mark.parametrize("only", REPRESENTATIONS)
-def test_density_map_clears_grass_where_it_is_black(headless, scene, ctx, only):
-    camera = SCENE.camera("top")
-    scene.set_only(only)
-    maps = DesignMaps(64)
-    scene.set_design_maps(maps)
-    bare_scene = DesignMaps(64)
-    bare_scene.fill("density", 0.0)
-    scene.set_design_maps(bare_scene)
-    bare, _ = headless.render(camera, SIZE)
-    scene.set_design_maps(maps)
-    maps.write("density", 0, 0, np.zeros((64, 32)))  # columns 0-31: u < 0.5, the cells at x < 0
-    image, _ = headless.render(camera, SIZE)
+def test_density_map_clears_grass_where_it_is_black(headless, only):
+    doc = document()
+    camera = doc.camera("top")
+    renderer = headless(doc, mode=only)
+    doc.maps.fill("density", 0.0)
+    bare, _ = renderer.render(camera, SIZE)
+    doc.maps.fill("density", 1.0)
+    # columns 0-31: u < 0.5, the cells at x < 0
+    doc.maps.write("density", 0, 0, np.zeros((64, 32)))
+    image, _ = renderer.render(camera, SIZE)
     cleared = pixel(camera, (-2.0, 0.0, 0.0))
     kept = pixel(camera, (2.0, 0.0, 0.0))
     assert covered(window(image, cleared), window(bare, cleared)) < 0.05
@@ -74,29 +71,26 @@ def test_density_map_clears_grass_where_it_is_black(headless, scene, ctx, only):
 
 
 @pytest.mark.parametrize("only", REPRESENTATIONS)
-def test_colour_map_with_full_alpha_colours_the_grass(headless, scene, ctx, only):
-    camera = SCENE.camera("top")
-    scene.set_only(only)
-    maps = DesignMaps(64)
-    maps.fill("color", (0.9, 0.1, 0.1, 1.0))
-    scene.set_design_maps(maps)
-    image, _ = headless.render(camera, SIZE)
+def test_colour_map_with_full_alpha_colours_the_grass(headless, only):
+    doc = document()
+    camera = doc.camera("top")
+    renderer = headless(doc, mode=only)
+    doc.maps.fill("color", (0.9, 0.1, 0.1, 1.0))
+    image, _ = renderer.render(camera, SIZE)
     r, g, _b = window(image, pixel(camera, (0.0, 0.0, 0.0)), 30).reshape(-1, 3).mean(axis=0)
     assert r > 1.5 * g  # the lawn turned red (eq. 6.8 with A_c = 1)
 
 
 @pytest.mark.parametrize("only", REPRESENTATIONS)
-def test_mirror_bits_change_the_pixels_but_not_the_statistics(headless, scene, ctx, only):
-    camera = SCENE.camera("default")
-    scene.set_only(only)
-    bare_maps = DesignMaps(1)
-    bare_maps.fill("density", 0.0)
-    scene.set_design_maps(bare_maps)
-    bare, _ = headless.render(camera, SIZE)
-    scene.set_design_maps(DesignMaps(1))
-    plain, _ = headless.render(camera, SIZE)
-    scene.set_instances(grid_instances(*SCENE.grid, mirror_seed=11))
-    tiled, _ = headless.render(camera, SIZE)
+def test_mirror_bits_change_the_pixels_but_not_the_statistics(headless, only):
+    doc = document(mirror_seed=None)
+    camera = doc.camera("default")
+    renderer = headless(doc, mode=only)
+    doc.maps.fill("density", 0.0)
+    bare, _ = renderer.render(camera, SIZE)
+    doc.maps.fill("density", 1.0)
+    plain, _ = renderer.render(camera, SIZE)
+    tiled, _ = headless(document(mirror_seed=11), mode=only).render(camera, SIZE)
     mask_p = np.abs(plain.astype(int) - bare.astype(int)).max(axis=-1) > 10
     mask_t = np.abs(tiled.astype(int) - bare.astype(int)).max(axis=-1) > 10
     changed = np.abs(plain.astype(int) - tiled.astype(int)).max(axis=-1) > 24

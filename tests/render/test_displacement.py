@@ -9,6 +9,7 @@ import pytest
 
 from app.scenes import get_scene
 from core.camera import Camera
+from core.patch import generate_patch
 from tests.conftest import pixel_rays
 
 BASE = get_scene("patch-grid")
@@ -33,17 +34,9 @@ def ground(z):
 
 
 def render(headless, only, camera, density=1.0):
-    headless.pipeline.set_only(only)
-    headless.load(SCENE, density=density)
-    image, _ = headless.render(camera, SIZE)
+    doc = dataclasses.replace(SCENE, density=density).document()
+    image, _ = headless(doc, mode=only).render(camera, SIZE)
     return image
-
-
-@pytest.fixture
-def restore(headless):
-    yield
-    headless.pipeline.set_only("geometry")
-    headless.load(BASE)
 
 
 def grass(image, bare):
@@ -65,8 +58,8 @@ def top_heights(mask, camera):
 
 
 @pytest.mark.parametrize("only", ["geometry", "volume"])
-def test_grass_stands_on_the_ramp_seen_from_the_side(headless, ctx, restore, only):
-    patch_height = headless.load(SCENE).height
+def test_grass_stands_on_the_ramp_seen_from_the_side(headless, only):
+    patch_height = generate_patch(SCENE.params).height
     bare = render(headless, only, SIDE, density=0.0)
     image = render(headless, only, SIDE)
     z, top = top_heights(grass(image, bare), SIDE)
@@ -79,7 +72,7 @@ def test_grass_stands_on_the_ramp_seen_from_the_side(headless, ctx, restore, onl
     assert np.percentile(np.abs(above_ground - patch_height), 90) < 0.2
 
 
-def test_volume_lookup_matches_the_blades_heights(headless, ctx, restore):
+def test_volume_lookup_matches_the_blades_heights(headless):
     bare = render(headless, "geometry", SIDE, density=0.0)
     geo = render(headless, "geometry", SIDE)
     vol = render(headless, "volume", SIDE)
@@ -115,7 +108,7 @@ def ramp_pixels(camera):
 
 
 @pytest.mark.parametrize("only", ["geometry", "volume", "image"])
-def test_grass_covers_the_ramp_and_nothing_beside_it(headless, ctx, restore, only):
+def test_grass_covers_the_ramp_and_nothing_beside_it(headless, only):
     bare = render(headless, only, ABOVE, density=0.0)
     image = render(headless, only, ABOVE)
     mask = grass(image, bare)

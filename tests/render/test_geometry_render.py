@@ -1,5 +1,7 @@
 """Standalone-EGL renders of the patch grid, judged by image statistics."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -12,13 +14,16 @@ SCENE = get_scene("patch-grid")
 PARAMS = SCENE.params.replace(blade_count=1200)
 
 
-def render(headless, params=PARAMS, density=1.0, camera="top"):
-    headless.load(SCENE, params, density=density)
-    image, stats = headless.render(SCENE.camera(camera), SIZE)
-    return image, stats
+def document(params=PARAMS, density=1.0):
+    return dataclasses.replace(SCENE, params=params, density=density).document()
 
 
-def test_grid_is_covered_with_lit_grass(headless, ctx):
+def render(headless, params=PARAMS, density=1.0, camera="top", mode="geometry"):
+    doc = document(params, density)
+    return headless(doc, mode=mode).render(doc.camera(camera), SIZE)
+
+
+def test_grid_is_covered_with_lit_grass(headless):
     image, stats = render(headless)
     assert coverage(image) > 0.5  # from above, the 8 × 8 grid fills most of the frame
     green = image[grass_mask(image)].mean(axis=0)
@@ -27,7 +32,7 @@ def test_grid_is_covered_with_lit_grass(headless, ctx):
     assert stats.c_g == 64 and stats.t_g_ms > 0 and stats.width == SIZE[0]
 
 
-def test_halving_density_lowers_coverage(headless, ctx):
+def test_halving_density_lowers_coverage(headless):
     bare, _ = render(headless, density=0.0, camera="top")
     full, _ = render(headless, density=1.0, camera="top")
     half, stats = render(headless, density=0.5, camera="top")
@@ -37,12 +42,12 @@ def test_halving_density_lowers_coverage(headless, ctx):
     assert stats.blades == pytest.approx(0.5 * 64 * PARAMS.blade_count, rel=0.05)
 
 
-def test_zero_density_shows_bare_ground(headless, ctx):
+def test_zero_density_shows_bare_ground(headless):
     image, _ = render(headless, density=0.0)
     assert coverage(image) < 0.01
 
 
-def test_seed_changes_pixels_not_statistics(headless, ctx):
+def test_seed_changes_pixels_not_statistics(headless):
     a, _ = render(headless, camera="default")
     b, _ = render(headless, PARAMS.replace(seed=PARAMS.seed + 7), camera="default")
     assert np.mean(np.any(a != b, axis=-1)) > 0.1
@@ -50,7 +55,7 @@ def test_seed_changes_pixels_not_statistics(headless, ctx):
     assert np.abs(a.mean(axis=(0, 1)) - b.mean(axis=(0, 1))).max() < 4
 
 
-def test_taller_grass_covers_more_at_grazing_view(headless, ctx):
+def test_taller_grass_covers_more_at_grazing_view(headless):
     short, _ = render(
         headless,
         PatchParams(blade_count=1200, length_min=0.04, length_max=0.06, patch_height=0.1),
@@ -60,26 +65,19 @@ def test_taller_grass_covers_more_at_grazing_view(headless, ctx):
     assert coverage(tall) > coverage(short) + 0.05
 
 
-def test_preview_frame_shows_the_same_grass_without_msaa(headless, ctx):
-    headless.load(SCENE, PARAMS)
-    camera = SCENE.camera("default")
-    full, _ = headless.render(camera, SIZE)
-    out = headless._target(SIZE)
-    headless.pipeline.render(camera, out, SIZE, preview=True)
-    raw = np.frombuffer(out.read(components=3, alignment=1), np.uint8)
-    preview = raw.reshape(SIZE[1], SIZE[0], 3)[::-1]
+def test_preview_frame_shows_the_same_grass_without_msaa(headless):
+    doc = document()
+    renderer = headless(doc, mode="geometry")
+    camera = doc.camera("default")
+    full, _ = renderer.render(camera, SIZE)
+    preview, _ = renderer.render(camera, SIZE, preview=True)
     assert coverage(preview) == pytest.approx(coverage(full), abs=0.08)
 
 
-def test_volume_representation_agrees_with_geometry(headless, ctx):
+def test_volume_representation_agrees_with_geometry(headless):
     """The same cells from the same camera, drawn as geometry and as ray-cast slices."""
-    camera = SCENE.camera("default")
-    headless.pipeline.set_only("geometry")
-    headless.load(SCENE, PARAMS)
-    geo, _ = headless.render(camera, SIZE)
-    headless.pipeline.set_only("volume")
-    vol, stats = headless.render(camera, SIZE)
-    headless.pipeline.set_only("geometry")
+    geo, _ = render(headless, camera="default")
+    vol, stats = render(headless, camera="default", mode="volume")
     assert stats.c_v == 64 and stats.c_g == 0 and stats.t_v_ms > 0
     assert coverage(vol) == pytest.approx(coverage(geo), abs=0.08)
     g_mean = geo[grass_mask(geo)].mean(axis=0)
@@ -87,27 +85,22 @@ def test_volume_representation_agrees_with_geometry(headless, ctx):
     assert np.abs(g_mean - v_mean).max() < 15  # mean grass colour within 15 of 255
 
 
-def test_volume_density_thins_grass(headless, ctx):
-    camera = SCENE.camera("top")
-    headless.pipeline.set_only("volume")
-    headless.load(SCENE, PARAMS, density=1.0)
-    full, _ = headless.render(camera, SIZE)
-    headless.pipeline.set_density(0.3)
-    thin, _ = headless.render(camera, SIZE)
-    headless.pipeline.set_only("geometry")
+def test_volume_density_thins_grass(headless):
+    doc = document()
+    renderer = headless(doc, mode="volume")
+    full, _ = renderer.render(doc.camera("top"), SIZE)
+    doc.density = 0.3
+    thin, _ = renderer.render(doc.camera("top"), SIZE)
     assert coverage(thin) < 0.8 * coverage(full)
 
 
-def test_image_representation_agrees_with_geometry_from_above(headless, ctx):
-    camera = SCENE.camera("top")
-    headless.pipeline.set_only("geometry")
-    headless.load(SCENE, PARAMS)
-    geo, _ = headless.render(camera, SIZE)
-    headless.pipeline.set_only("image")
-    img, stats = headless.render(camera, SIZE)
-    headless.pipeline.set_density(0.2)
-    thin, _ = headless.render(camera, SIZE)
-    headless.pipeline.set_only("geometry")
+def test_image_representation_agrees_with_geometry_from_above(headless):
+    geo, _ = render(headless)
+    doc = document()
+    renderer = headless(doc, mode="image")
+    img, stats = renderer.render(doc.camera("top"), SIZE)
+    doc.density = 0.2
+    thin, _ = renderer.render(doc.camera("top"), SIZE)
     assert stats.c_i == 64 and stats.c_g == 0 and stats.t_i_ms > 0
     assert coverage(img) == pytest.approx(coverage(geo), abs=0.1)
     assert coverage(thin) < 0.6 * coverage(img)
@@ -119,13 +112,9 @@ def test_image_representation_agrees_with_geometry_from_above(headless, ctx):
 @pytest.mark.parametrize(
     ("only", "dominant"), [("geometry", "red"), ("volume", "yellow"), ("image", "blue")]
 )
-def test_technique_view_colours_each_representation(headless, ctx, only, dominant):
-    headless.pipeline.set_only(only)
-    headless.pipeline.view = "techniques"
-    headless.load(SCENE, PARAMS)
-    image, _ = headless.render(SCENE.camera("top"), SIZE)
-    headless.pipeline.view = "shaded"
-    headless.pipeline.set_only("geometry")
+def test_technique_view_colours_each_representation(headless, only, dominant):
+    doc = document()
+    image, _ = headless(doc, mode=only, view="techniques").render(doc.camera("top"), SIZE)
     r, g, b = (image[..., c].astype(int) for c in range(3))
     share = {
         "red": ((r > 120) & (g < 0.5 * r) & (b < 0.5 * r)).mean(),

@@ -5,7 +5,7 @@ import dataclasses
 
 import numpy as np
 
-from app.scenes import GrassType, get_scene
+from app.scenes import GrassRecipe, get_scene
 from core.lod import LodConfig
 from core.params import PRESETS
 
@@ -19,7 +19,7 @@ def left_half(width, height):
     return out
 
 
-TALL = GrassType(
+TALL = GrassRecipe(
     "tall",
     PRESETS["long thin meadow grass"].replace(blade_count=600, tip_color=(0.9, 0.8, 0.3)),
     LodConfig.zones(geometry_end=None, volume_end=None),  # geometry everywhere
@@ -29,16 +29,11 @@ TALL = GrassType(
 
 
 def test_a_second_grass_type_grows_only_where_its_density_channel_says(headless, ctx):
-    camera = BASE.camera("top")
     one = dataclasses.replace(BASE, params=BASE.params.replace(blade_count=500), mirror_seed=None)
-    two = dataclasses.replace(one, grass=(TALL,))
-    headless.pipeline.set_only("lod")
-    headless.load(one)
-    a, sa = headless.render(camera, SIZE)
-    headless.load(two)
-    b, sb = headless.render(camera, SIZE)
-    headless.load(BASE)
-    headless.pipeline.set_only("geometry")
+    two = dataclasses.replace(one, grass=(TALL,)).document()
+    camera = two.camera("top")
+    a, sa = headless(one.document()).render(camera, SIZE)
+    b, sb = headless(two).render(camera, SIZE)
     changed = np.abs(a.astype(int) - b.astype(int)).max(axis=-1) > 20
     # the top camera looks down -y with +x to the right of the image
     left, right = changed[:, 20:90], changed[:, 110:180]

@@ -1,19 +1,21 @@
 """Objects standing in the grass are partly hidden by it: the volume renderer writes the depth of
 its first opaque hit (thesis 5.2), the blades their own."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from app.scenes import get_scene
 from core.camera import Camera
-from core.props import PROP_DTYPE, boxes
+from core.props import boxes
 from render.props import _cube
 
 SCENE = get_scene("patch-grid")
 PARAMS = SCENE.params.replace(blade_count=1500)
 SIZE = (240, 180)
 CAMERA = Camera.from_eye_target((0.0, 0.45, 3.2), (0.0, 0.25, 0.0))
-BOX = boxes([((0.0, 0.0), (0.5, 0.9, 0.5), (0.85, 0.1, 0.1))])
+BOX = ((0.0, 0.0), (0.5, 0.9, 0.5), (0.85, 0.1, 0.1))
 
 
 def red(image):
@@ -36,15 +38,12 @@ def test_bad_prop_size_is_refused():
 
 
 @pytest.mark.parametrize("only", ["geometry", "volume"])
-def test_prop_standing_in_grass_is_partly_hidden(headless, ctx, only):
-    headless.pipeline.set_only(only)
-    headless.load(SCENE, PARAMS, density=0.0)
-    headless.pipeline.set_props(BOX)
-    bare, _ = headless.render(CAMERA, SIZE)
-    headless.pipeline.set_density(1.0)
-    grass, _ = headless.render(CAMERA, SIZE)
-    headless.pipeline.set_props(np.zeros(0, PROP_DTYPE))
-    headless.pipeline.set_only("geometry")
+def test_prop_standing_in_grass_is_partly_hidden(headless, only):
+    doc = dataclasses.replace(SCENE, params=PARAMS, density=0.0, props=(BOX,)).document()
+    renderer = headless(doc, mode=only)
+    bare, _ = renderer.render(CAMERA, SIZE)
+    doc.density = 1.0
+    grass, _ = renderer.render(CAMERA, SIZE)
     box = red(bare)
     rows = np.nonzero(box.any(axis=1))[0]
     assert rows.size > 40  # the box fills a good part of the view

@@ -1,6 +1,7 @@
 """Across a transition zone the covered fraction is continuous (thesis 5.4): checked along a line
 of distances, between the renders that use only the near or only the far representation."""
 
+import dataclasses
 import itertools
 
 import numpy as np
@@ -26,9 +27,8 @@ def ground_distance(camera, size):
     return np.where(t > 0, dist, np.nan)
 
 
-def render(headless, only):
-    headless.pipeline.set_only(only)
-    image, _ = headless.render(SCENE.camera("grazing"), SIZE)
+def render(headless, doc, mode):
+    image, _ = headless(doc, mode=mode).render(doc.camera("grazing"), SIZE)
     return grass_mask(image)
 
 
@@ -40,15 +40,11 @@ def render(headless, only):
         ("volume", "image", LodConfig.zones(geometry_end=0.1, volume_end=5.0), (4.0, 6.0)),
     ],
 )
-def test_covered_fraction_is_continuous_through_the_transition(
-    headless, ctx, near, far, lod, bounds
-):
-    headless.pipeline.set_lod(lod)
-    headless.load(SCENE, PARAMS, density=0.35)  # thin grass: coverage far from saturation
-    lod, only_near, only_far = (render(headless, m) for m in ("lod", near, far))
-    headless.pipeline.set_only("geometry")
-    headless.pipeline.set_lod(SCENE.lod)
-    dist = ground_distance(SCENE.camera("grazing"), SIZE)
+def test_covered_fraction_is_continuous_through_the_transition(headless, near, far, lod, bounds):
+    # thin grass: coverage far from saturation
+    doc = dataclasses.replace(SCENE, params=PARAMS, density=0.35, lod=lod).document()
+    lod, only_near, only_far = (render(headless, doc, m) for m in ("lod", near, far))
+    dist = ground_distance(doc.camera("grazing"), SIZE)
     edges = np.linspace(*bounds, 9)
     checked = 0
     for lo, hi in itertools.pairwise(edges):
@@ -64,18 +60,12 @@ def test_covered_fraction_is_continuous_through_the_transition(
     assert checked >= 6  # the line of distances crosses the whole band
 
 
-def test_technique_view_shows_three_bands_that_blend(headless, ctx):
+def test_technique_view_shows_three_bands_that_blend(headless):
     """The bench scene's `zones` camera: red near, yellow mid-range, blue far, and rows where
     two colours meet (the transition zones) rather than a hard line."""
     scene = get_scene("bench")
-    headless.load(scene, scene.params.replace(blade_count=400))
-    headless.pipeline.set_only("lod")
-    headless.pipeline.set_lod(scene.lod)
-    headless.pipeline.view = "techniques"
-    image, stats = headless.render(scene.camera("zones"), (240, 136))
-    headless.pipeline.view = "shaded"
-    headless.pipeline.set_only("geometry")
-    headless.pipeline.set_lod(SCENE.lod)
+    doc = dataclasses.replace(scene, params=scene.params.replace(blade_count=400)).document()
+    image, stats = headless(doc, view="techniques").render(doc.camera("zones"), (240, 136))
     r, g, b = (image[..., c].astype(int) for c in range(3))
     colours = {
         "red": (r > 120) & (g < 0.5 * r) & (b < 0.5 * r),

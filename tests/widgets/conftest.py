@@ -64,7 +64,7 @@ def window(qtbot, tmp_path, monkeypatch):
     )
     scene = get_scene("patch-grid")
     scene = type(scene)(**{**scene.__dict__, "params": scene.params.replace(blade_count=600)})
-    win = keep(DesignerWindow(scene))
+    win = keep(DesignerWindow(scene.document()))
     win.autosave.directory = tmp_path / "autosave"
     win.resize(1300, 640)
     win.show()

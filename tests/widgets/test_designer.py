@@ -22,7 +22,7 @@ def test_blade_count_edit_regenerates_patch_and_changes_image(window, qtbot):
     box = spin_box(window, "blade_count")
     old_patch = window.patch
     box.setValue(3000)
-    qtbot.waitUntil(lambda: window.design.params.blade_count == 3000, timeout=5000)
+    qtbot.waitUntil(lambda: window.document.params(0).blade_count == 3000, timeout=5000)
     qtbot.waitUntil(
         lambda: window.patch is not old_patch and window.patch.blade_count == 3000, timeout=20000
     )
@@ -38,7 +38,7 @@ def test_blade_count_edit_regenerates_patch_and_changes_image(window, qtbot):
 def test_out_of_range_edit_is_refused_with_message(window, qtbot):
     window.panel.param("length_min").setValue(0.9)  # above length_max
     assert "length_min" in window.panel.message.text()
-    assert window.design.params.length_min == pytest.approx(0.18)
+    assert window.document.params(0).length_min == pytest.approx(0.18)
 
 
 def test_mouse_drag_orbits_camera(window, qtbot):
@@ -58,7 +58,7 @@ def test_mouse_drag_orbits_camera(window, qtbot):
 def test_density_slider_thins_grass(window, qtbot):
     before = coverage(grab(window))
     window.panel.param("density").setValue(0.2)
-    assert window.design.density == pytest.approx(0.2)
+    assert window.document.density == pytest.approx(0.2)
     assert coverage(grab(window)) < 0.8 * before
 
 
@@ -93,7 +93,7 @@ def test_slice_count_edit_reconverts_without_blocking_and_undoes(window, qtbot):
     progress = []
     window.viewport.slices.progress.connect(lambda done, total: progress.append((done, total)))
     window.panel.param("slices").setValue(2)
-    assert window.design.slices.slices == 2
+    assert window.document.slices.slices == 2
     assert window.viewport.slices.busy  # returned at once; the conversion runs in steps
     wait_for_slices(window, qtbot)
     assert window.viewport.pipeline.volume.slices == 2
@@ -108,7 +108,7 @@ def test_opening_a_built_in_scene_replaces_terrain_cameras_and_patch(window, qtb
     from app.scenes import get_scene
 
     meadow = get_scene("meadow")
-    window.open_scene(meadow)
+    window.open_document(meadow.document())
     assert window.windowTitle().startswith("Sward — meadow")
     assert [a.text() for a in window.camera_menu.actions()] == list(meadow.cameras)
     qtbot.waitUntil(
@@ -130,22 +130,24 @@ def test_project_saved_and_reopened_restores_the_parameters(window, qtbot, tmp_p
 
     path = tmp_path / "mine.sward"
     window.panel.param("density").setValue(0.6)
-    window.maps.write("color", 0, 0, np.tile([0.9, 0.8, 0.1, 0.8], (128, 256, 1)))  # painted
-    lod = set_field(window.lods[0], 0, "end", 4.5)
+    window.document.maps.write(
+        "color", 0, 0, np.tile([0.9, 0.8, 0.1, 0.8], (128, 256, 1))
+    )  # painted
+    lod = set_field(window.document.lod(0), 0, "end", 4.5)
     window.lod_panel.lod_edited.emit(0, lod)
     assert window.isWindowModified()
     wait_for_slices(window, qtbot)
     saved_image = grab(window)
     assert window.projects.save_as(path)
     assert not window.isWindowModified()
-    saved_params = window.design.params
+    saved_params = window.document.params(0)
     window.panel.param("density").setValue(0.3)
     monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
     camera = window.viewport.camera
     assert window.projects.open(path)
-    assert window.design.density == pytest.approx(0.6)
-    assert window.design.params == saved_params
-    assert window.lods[0] == lod
+    assert window.document.density == pytest.approx(0.6)
+    assert window.document.params(0) == saved_params
+    assert window.document.lod(0) == lod
     assert str(path.resolve()) in window.projects.recent()
     assert [a.text() for a in window.recent_menu.actions()] == [str(path.resolve())]
     window.viewport.set_camera(camera)
@@ -163,10 +165,10 @@ def test_a_corrupt_project_gives_a_message_and_keeps_the_open_one(window, tmp_pa
     bad.write_bytes(b"PK\x03\x04 broken")
     messages = []
     monkeypatch.setattr(QMessageBox, "warning", lambda parent, title, text: messages.append(text))
-    before = (window.scene.name, window.design.params, window.design.density)
+    before = (window.document.name, window.document.params(0), window.document.density)
     assert not window.projects.open(bad)
     assert len(messages) == 1 and "broken.sward" in messages[0]
-    assert (window.scene.name, window.design.params, window.design.density) == before
+    assert (window.document.name, window.document.params(0), window.document.density) == before
 
 
 def test_closing_with_unsaved_changes_asks_and_cancel_keeps_the_window(window, monkeypatch):
@@ -195,7 +197,7 @@ def test_autosave_recovers_unsaved_work_after_a_crash(window, qtbot, tmp_path, m
     window.panel.param("density").setValue(0.45)
     assert window.autosave.save_now() and window.autosave.path.exists()
     # the session "crashes": a new one starts with the autosave still there
-    other = keep(DesignerWindow(get_scene("patch-grid")))
+    other = keep(DesignerWindow(get_scene("patch-grid").document()))
     other.autosave.directory = window.autosave.directory
     asked = []
     monkeypatch.setattr(
@@ -205,7 +207,7 @@ def test_autosave_recovers_unsaved_work_after_a_crash(window, qtbot, tmp_path, m
     )
     assert other.autosave.recover_if_any()
     assert "Recover" in asked[0]
-    assert other.design.density == pytest.approx(0.45)
+    assert other.document.density == pytest.approx(0.45)
     assert not other.undo_stack.isClean()  # recovered work still needs saving
     monkeypatch.setattr(QMessageBox, "question", lambda *a, **k: QMessageBox.StandardButton.Discard)
     other.close()
@@ -228,23 +230,23 @@ def test_an_image_larger_than_the_window_is_drawn_at_that_size(window, qtbot, tm
 
 
 def test_the_light_panel_relights_the_grass_undoably_and_is_saved(window, qtbot, tmp_path):
-    from app.project import load_project
+    from core.project_file import load_project
 
     before = grab(window).astype(float).mean()
     window.light_panel.root.child("sun_elevation").setValue(5.0)  # the sun near the horizon
-    assert window.lighting.sun_elevation == 5.0
+    assert window.document.light.sun_elevation == 5.0
     assert window.viewport.pipeline.lighting.sun_elevation == 5.0
     after = grab(window).astype(float).mean()
     assert after < before - 3  # low sun: darker grass
     assert window.projects.save_as(tmp_path / "dusk.sward")
-    assert load_project(tmp_path / "dusk.sward").lighting.sun_elevation == 5.0
+    assert load_project(tmp_path / "dusk.sward").light.sun_elevation == 5.0
     window.undo_stack.undo()
-    assert window.lighting.sun_elevation == 50.0
+    assert window.document.light.sun_elevation == 50.0
     assert window.light_panel.root.child("sun_elevation").value() == 50.0
 
 
 def test_a_bookmarked_view_is_in_the_camera_menu_and_the_saved_project(window, tmp_path):
-    from app.project import load_project
+    from core.project_file import load_project
 
     vp = window.viewport
     vp.camera.orbit(40.0, 10.0)
@@ -254,33 +256,36 @@ def test_a_bookmarked_view_is_in_the_camera_menu_and_the_saved_project(window, t
     spec = load_project(tmp_path / "b.sward").cameras["over the hill"]
     assert np.allclose(spec.eye, vp.camera.eye, atol=1e-5)
     window.undo_stack.undo()
-    assert "over the hill" not in window.scene.cameras
+    assert "over the hill" not in window.document.cameras
 
 
 def test_each_grass_type_has_its_own_blades(window, qtbot, tmp_path):
     import dataclasses
 
-    from app.project import load_project
-    from app.scenes import GrassType
+    from app.scenes import GrassRecipe, get_scene
     from core.lod import LodConfig
+    from core.project_file import load_project
 
-    first = window.scene.params
-    clumps = GrassType("clumps", first.replace(blade_count=300, seed=9), LodConfig.zones(), 1)
-    window.open_scene(dataclasses.replace(window.scene, grass=(clumps,)))
+    first = window.document.params(0)
+    clumps = GrassRecipe("clumps", first.replace(blade_count=300, seed=9), LodConfig.zones(), 1)
+    scene = dataclasses.replace(get_scene("patch-grid"), params=first, grass=(clumps,))
+    window.open_document(scene.document())
     qtbot.waitUntil(lambda: window.patch is not None and window.patch.params == first)
     panel = window.panel
     panel.param("grass_type").setValue(1)
-    assert panel.blades is window.designs[1]
+    assert panel.grass_type == 1
     assert panel.param("blade_count").value() == 300
     panel.param("blade_count").setValue(700)
-    assert window.designs[1].params.blade_count == 700
-    assert window.design.params == first  # the first type keeps its blades
+    assert window.document.params(1).blade_count == 700
+    assert window.document.params(0) == first  # the first type keeps its blades
     layer = window.viewport.pipeline.layers[1]
-    qtbot.waitUntil(lambda: layer.patch.params.blade_count == 700, timeout=20000)
+    qtbot.waitUntil(
+        lambda: layer.patch is not None and layer.patch.params.blade_count == 700, timeout=20000
+    )
     assert window.projects.save_as(tmp_path / "two.sward")
-    assert load_project(tmp_path / "two.sward").grass[0].params.blade_count == 700
+    assert load_project(tmp_path / "two.sward").params(1).blade_count == 700
     window.undo_stack.undo()
-    assert window.designs[1].params.blade_count == 300
+    assert window.document.params(1).blade_count == 300
     assert panel.param("blade_count").value() == 300
     panel.param("grass_type").setValue(0)
     assert panel.param("blade_count").value() == first.blade_count

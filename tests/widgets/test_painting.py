@@ -15,7 +15,7 @@ pytestmark = pytest.mark.gui
 def top_view(window, qtbot):
     """Look straight down on the 8 × 8 cells, geometry everywhere (the brush's footprint is
     then where it was painted), with the paint tool on."""
-    window.viewport.set_camera(window.scene.camera("top"))
+    window.viewport.set_camera(window.document.camera("top"))
     window.mode_actions["geometry"].trigger()
     window.paint_action.trigger()
     assert window.viewport.tool == "paint"
@@ -43,7 +43,7 @@ def stroke_line(vp):
 def test_a_stroke_bares_the_grass_under_it_only_and_undo_redo_are_exact(window, qtbot):
     vp = window.viewport
     before_image = top_view(window, qtbot)
-    maps_before = window.maps.stack.copy()
+    maps_before = window.document.maps.stack.copy()
     panel = window.paint_panel
     panel.select("density", 0)
     panel.size_box.setValue(16)
@@ -52,7 +52,7 @@ def test_a_stroke_bares_the_grass_under_it_only_and_undo_redo_are_exact(window, 
     points, y = stroke_line(vp)
     drag(qtbot, vp, points)
     assert window.undo_stack.count() == 1 and window.undo_stack.canUndo()
-    painted = window.maps.stack.copy()
+    painted = window.document.maps.stack.copy()
     changed = np.any(painted != maps_before, axis=-1)
     assert changed[0].any() and not changed[1:].any()  # only the density map
     vp.update()
@@ -70,11 +70,11 @@ def test_a_stroke_bares_the_grass_under_it_only_and_undo_redo_are_exact(window, 
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow)
     QTest.keyClick(vp, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # Ctrl+Z
-    assert np.array_equal(window.maps.stack, maps_before)
+    assert np.array_equal(window.document.maps.stack, maps_before)
     QTest.keyClick(
         vp, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
     )
-    assert np.array_equal(window.maps.stack, painted)
+    assert np.array_equal(window.document.maps.stack, painted)
 
 
 def test_ctrl_erases_back_to_full_density(window, qtbot):
@@ -87,10 +87,10 @@ def test_ctrl_erases_back_to_full_density(window, qtbot):
     panel.falloff_box.setCurrentText("constant")
     points, _ = stroke_line(vp)
     drag(qtbot, vp, points)
-    assert window.maps.layer("density")[..., 0].min() == 0.0
+    assert window.document.maps.layer("density")[..., 0].min() == 0.0
     panel.size_box.setValue(40)  # wider than the first stroke, so it erases all of it
     drag(qtbot, vp, points, Qt.KeyboardModifier.ControlModifier)
-    assert window.maps.layer("density")[..., 0].min() == 1.0
+    assert window.document.maps.layer("density")[..., 0].min() == 1.0
     assert window.undo_stack.count() == 2
 
 
@@ -122,7 +122,7 @@ def test_painting_colour_with_high_alpha_shows_that_colour(window, qtbot):
 def test_eyedropper_takes_the_value_under_the_cursor(window, qtbot):
     vp = window.viewport
     top_view(window, qtbot)
-    window.maps.fill("ambient", 0.35)
+    window.document.maps.fill("ambient", 0.35)
     panel = window.paint_panel
     panel.select("ambient")
     panel.value_box.setValue(1.0)
@@ -134,7 +134,7 @@ def test_eyedropper_takes_the_value_under_the_cursor(window, qtbot):
 
 def test_editing_a_lod_end_changes_the_counts_in_the_overlay(window, qtbot):
     vp = window.viewport
-    vp.set_camera(window.scene.camera("grazing"))
+    vp.set_camera(window.document.camera("grazing"))
     window.timings_action.trigger()
     assert window.overlay.isVisible()
     wait_for_slices(window, qtbot)
@@ -143,7 +143,7 @@ def test_editing_a_lod_end_changes_the_counts_in_the_overlay(window, qtbot):
     before = vp.last_stats
     panel = window.lod_panel
     panel.end_box(0).setValue(5.5)  # geometry to 5.5 instead of 3.5 + 0.75
-    assert window.lods[0].levels[0].end == 5.5
+    assert window.document.lod(0).levels[0].end == 5.5
     qtbot.waitUntil(lambda: vp.last_stats.c_g != before.c_g, timeout=30000)
     after = vp.last_stats
     assert after.c_g > before.c_g
@@ -152,14 +152,14 @@ def test_editing_a_lod_end_changes_the_counts_in_the_overlay(window, qtbot):
     assert float(row.split()[3]) == after.c_g  # max over the last frames: the new count
     assert panel.table.item(0, 5).text() == f"{after.c_g:,}"
     window.undo_stack.undo()
-    assert window.lods[0].levels[0].end == 4.25
+    assert window.document.lod(0).levels[0].end == 4.25
 
 
 def test_an_impossible_lod_edit_is_refused_with_the_reason(window, qtbot):
     panel = window.lod_panel
-    before = window.lods[0]
+    before = window.document.lod(0)
     panel.end_box(0).setValue(50.0)  # past the volume level's end
-    assert window.lods[0] == before
+    assert window.document.lod(0) == before
     assert "increasing" in panel.message.text()
     qtbot.waitUntil(lambda: panel.end_box(0).value() == before.levels[0].end)
 
@@ -170,7 +170,7 @@ def test_a_broken_map_file_gives_one_message_and_keeps_the_maps(window, tmp_path
     messages = []
     monkeypatch.setattr(QMessageBox, "warning", lambda parent, title, text: messages.append(text))
     window.paint_panel.select("density", 0)
-    before = window.maps.stack.copy()
+    before = window.document.maps.stack.copy()
     bad = tmp_path / "paths.png"
     bad.write_bytes(b"\x89PNG\r\n\x1a\n not really")
     assert not window.map_files.import_map(bad)
@@ -180,7 +180,7 @@ def test_a_broken_map_file_gives_one_message_and_keeps_the_maps(window, tmp_path
     assert not window.map_files.import_map(raw, raw=raw_size)
     assert len(messages) == 2
     assert "paths.png" in messages[0] and "terrain.r16" in messages[1]
-    assert np.array_equal(window.maps.stack, before)
+    assert np.array_equal(window.document.maps.stack, before)
     assert window.undo_stack.count() == 0
 
 
@@ -190,16 +190,16 @@ def test_imported_maps_are_resampled_and_undoable_and_export_round_trips(window,
     window.paint_panel.select("height")
     ramp = (np.linspace(0, 65535, 512)[None, :].repeat(100, axis=0)).astype(np.uint16)
     Image.fromarray(ramp).save(tmp_path / "ramp.png")  # 16-bit, 512 × 100
-    before = window.maps.stack.copy()
+    before = window.document.maps.stack.copy()
     assert window.map_files.import_map(tmp_path / "ramp.png")
     assert "resampled" in window.statusBar().currentMessage()
-    height = window.maps.layer("height")[..., 0]
+    height = window.document.maps.layer("height")[..., 0]
     assert height.shape == (256, 256) and np.all(np.diff(height[128, 8:-8]) > 0)
     assert window.map_files.export_map(tmp_path / "out.png")
     with Image.open(tmp_path / "out.png") as exported:
         assert exported.mode.startswith("I") and exported.size == (256, 256)
     window.undo_stack.undo()
-    assert np.array_equal(window.maps.stack, before)
+    assert np.array_equal(window.document.maps.stack, before)
 
 
 def test_painting_in_the_2d_map_view_changes_the_map_and_its_image(window, qtbot):
@@ -223,7 +223,7 @@ def test_painting_in_the_2d_map_view_changes_the_map_and_its_image(window, qtbot
 
     points = [at(x, 128.0) for x in np.linspace(60.0, 200.0, 10)]
     drag(qtbot, view.plot.viewport(), points)
-    density = window.maps.layer("density")[..., 0]
+    density = window.document.maps.layer("density")[..., 0]
     assert density[128, 80:180].max() < 0.05  # under the stroke
     assert density[:100].min() == 1.0 and density[160:].min() == 1.0  # nowhere else
     qtbot.waitUntil(lambda: view.displayed()[128, 120] < 0.05)
@@ -254,10 +254,12 @@ def test_recorded_frames_are_saved_as_csv(window, qtbot, tmp_path, monkeypatch):
 def test_painting_height_raises_the_ground_and_the_terrain_follows(window, qtbot):
     import dataclasses
 
+    from app.scenes import get_scene
+
     hilly = dataclasses.replace(
-        window.scene, height_scale=1.0, height_map=lambda w, h: np.zeros((h, w))
+        get_scene("patch-grid"), height_scale=1.0, height_map=lambda w, h: np.zeros((h, w))
     )
-    window.open_scene(hilly)
+    window.open_document(hilly.document())
     vp = window.viewport
     top_view(window, qtbot)
     assert vp.pipeline.terrain.cell_max.max() < 0.01
@@ -269,7 +271,7 @@ def test_painting_height_raises_the_ground_and_the_terrain_follows(window, qtbot
     panel.size_box.setValue(40)
     points, _ = stroke_line(vp)
     drag(qtbot, vp, points)
-    assert window.maps.layer("height").max() > 0.9
+    assert window.document.maps.layer("height").max() > 0.9
     # the quadtree's bounds follow the painted ground (after the stroke, debounced)
     qtbot.waitUntil(lambda: vp.pipeline.terrain.cell_max.max() > 0.9, timeout=5000)
     window.undo_stack.undo()

@@ -1,0 +1,117 @@
+"""The designer's menus and shortcuts (File, Edit, View, Paint)."""
+
+from __future__ import annotations
+
+from PySide6.QtGui import QAction, QActionGroup, QKeySequence
+
+from app.scenes import SCENES, get_scene
+from core.view_mode import ViewMode
+
+# the View menu's view modes: (mode, menu text, shortcut)
+VIEW_MODES = (
+    (ViewMode.LOD, "&LOD zones (all three)", "Ctrl+1"),
+    (ViewMode.GEOMETRY, "&Geometry only", "Ctrl+2"),
+    (ViewMode.VOLUME, "&Volume only", "Ctrl+3"),
+    (ViewMode.IMAGE, "&Image-based only", "Ctrl+4"),
+    (ViewMode.COMPARE, "&Compare side by side", "Ctrl+5"),
+)
+
+
+def _action(window, text: str, key, slot, checkable: bool = False) -> QAction:
+    act = QAction(text, window, shortcut=QKeySequence(key), checkable=checkable)
+    (act.toggled if checkable else act.triggered).connect(slot)
+    window.addAction(act)  # works while the menu bar is hidden, e.g. in a test
+    return act
+
+
+def build_menus(w) -> None:
+    """Menus of the designer window `w`; the actions a test or a shortcut reaches are kept
+    on the window (mode_actions, techniques_action, zones_action, timings_action,
+    paint_action, recent_menu, camera_menu)."""
+    file_menu = w.menuBar().addMenu("&File")
+    file_menu.addAction(
+        _action(w, "&Open project…", QKeySequence.StandardKey.Open, lambda: w.projects.open())
+    )
+    w.recent_menu = file_menu.addMenu("Open &recent")
+    scenes = file_menu.addMenu("&New from built-in scene")
+    for name, scene in SCENES.items():
+        act = scenes.addAction(f"{name} — {scene.description}")
+        act.triggered.connect(lambda _=False, n=name: w.projects.new(get_scene(n).document()))
+    file_menu.addActions(
+        [
+            _action(w, "&Save project", QKeySequence.StandardKey.Save, w.projects.save),
+            _action(w, "Save project &as…", "Ctrl+Shift+S", lambda: w.projects.save_as()),
+            _action(w, "Save &image…", "Ctrl+E", w.save_image_dialog),
+            _action(w, "&Quit", QKeySequence.StandardKey.Quit, w.close),
+        ]
+    )
+    w.fill_recent_menu()
+
+    edit = w.menuBar().addMenu("&Edit")
+    undo = w.undo_stack.createUndoAction(w, "&Undo")
+    undo.setShortcut(QKeySequence.StandardKey.Undo)
+    redo = w.undo_stack.createRedoAction(w, "&Redo")
+    redo.setShortcut(QKeySequence.StandardKey.Redo)
+    edit.addActions([undo, redo])
+
+    view = w.menuBar().addMenu("&View")
+    view.addAction(
+        _action(w, "&Reset camera", "Home", lambda: w.viewport.set_camera(w.document.camera()))
+    )
+    w.camera_menu = view.addMenu("&Cameras")
+    fill_camera_menu(w)
+    view.addAction(_action(w, "&Bookmark this view…", "Ctrl+D", lambda: w.bookmark_view()))
+    view.addSeparator()
+    group = QActionGroup(w)
+    w.mode_actions = {}
+    for mode, text, key in VIEW_MODES:
+        act = QAction(text, w, shortcut=QKeySequence(key), checkable=True)
+        act.setChecked(mode == w.viewport.mode)
+        act.triggered.connect(lambda _=False, m=mode: w.viewport.set_mode(m))
+        group.addAction(act)
+        view.addAction(act)
+        w.mode_actions[mode] = act
+    w.techniques_action = _action(
+        w,
+        "&Technique colours",
+        "T",
+        lambda on: w.viewport.set_view("techniques" if on else "shaded"),
+        checkable=True,
+    )
+    w.techniques_action.setToolTip("geometry red, volume yellow, image-based blue")
+    view.addAction(w.techniques_action)
+    w.zones_action = _action(
+        w, "LOD &zones on the terrain", "Z", w.lod_panel.zones_box.setChecked, checkable=True
+    )
+    w.lod_panel.zones_box.toggled.connect(w.zones_action.setChecked)
+    view.addAction(w.zones_action)
+    w.timings_action = _action(w, "T&imings overlay", "P", w.overlay.setVisible, checkable=True)
+    view.addAction(w.timings_action)
+    view.addSeparator()
+    docks = (w.patch_dock, w.paint_dock, w.lod_dock, w.light_dock, w.map_dock, w.history_dock)
+    for dock in (*docks, w.profile_dock):
+        view.addAction(dock.toggleViewAction())
+
+    paint = w.menuBar().addMenu("&Paint")
+    w.paint_action = _action(w, "&Paint in the viewport", "B", w.set_painting, True)
+    paint.addAction(w.paint_action)
+    paint.addSeparator()
+    panel = w.paint_panel
+    paint.addActions(
+        [
+            _action(w, "&Bigger brush", "]", lambda: panel.scale_size(1.25)),
+            _action(w, "&Smaller brush", "[", lambda: panel.scale_size(0.8)),
+            _action(w, "S&tronger", "=", lambda: panel.add_strength(0.1)),
+            _action(w, "&Weaker", "-", lambda: panel.add_strength(-0.1)),
+            _action(w, "&Eyedropper", "I", w.painter.start_eyedropper),
+            _action(w, "&Leave painting", "Escape", w.leave_painting),
+        ]
+    )
+
+
+def fill_camera_menu(w) -> None:
+    """The project's named cameras (bookmarks among them)."""
+    w.camera_menu.clear()
+    for name in w.document.cameras:
+        act = w.camera_menu.addAction(name)
+        act.triggered.connect(lambda _=False, n=name: w.viewport.set_camera(w.document.camera(n)))

@@ -1,0 +1,302 @@
+"""The open project as one Qt-free, evented document: its grass types (blade parameters, LOD
+levels, density-map channel), the design maps, the global density, how patches become slices,
+the light, the terrain, the props, the named cameras and camera paths. It is the only copy: the
+designer's panels change it through undoable commands, loading builds it (core/project_file.py),
+saving serialises it, and the renderer follows its events (render/binding.py).
+
+Every setter announces a change only when the value changed; `events` is a psygnal group, so a
+view connects `document.events.<name>` without Qt.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from psygnal import Signal, SignalGroup
+
+from core.camera import Camera
+from core.design_maps import LAYER_INDEX, DesignMaps
+from core.heights import bilinear
+from core.lighting import Lighting
+from core.lod import LodConfig
+from core.params import PatchParams, SliceParams
+from core.paths import sample_path
+from core.props import boxes
+from core.terrain import Terrain
+
+MAIN_GRASS = "main grass"  # the first grass type's name (density channel 0)
+
+
+@dataclass(frozen=True)
+class CameraSpec:
+    eye: tuple[float, float, float]
+    target: tuple[float, float, float]
+    far: float = 500.0
+    near: float = 0.02
+
+    def camera(self) -> Camera:
+        return Camera.from_eye_target(self.eye, self.target, near=self.near, far=self.far)
+
+
+@dataclass(frozen=True)
+class GrassType:
+    """One grass type on the terrain (thesis 6.4.5): its patch, LOD levels and the channel of the
+    density map it grows by; it shares the terrain and the light and colour maps."""
+
+    name: str
+    params: PatchParams
+    lod: LodConfig = field(default_factory=LodConfig)
+    channel: int = 0
+
+    def __post_init__(self) -> None:
+        if not 0 <= self.channel <= 3:
+            raise ValueError(f"grass type {self.name}: density channel must be 0 … 3")
+
+
+@dataclass(frozen=True)
+class Prop:
+    """A box standing in the grass: centre (x, z), size (w, h, d), colour, lift above the ground
+    under its centre (a crossbar)."""
+
+    position: tuple[float, float]
+    size: tuple[float, float, float]
+    color: tuple[float, float, float]
+    lift: float = 0.0
+
+
+@dataclass(frozen=True)
+class TerrainSpec:
+    """The grid of cells and how its ground is shaped (the heights are the height map)."""
+
+    columns: int
+    rows: int
+    mirror_seed: int | None = None  # aperiodic tiling (thesis 6.3); None: every cell alike
+    height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
+
+    def __post_init__(self) -> None:
+        if not (1 <= self.columns <= 16384 and 1 <= self.rows <= 16384):
+            raise ValueError(f"terrain {self.columns} × {self.rows}: each side must be 1 … 16384")
+        if not 0.0 <= self.height_scale <= 10_000.0:
+            raise ValueError(f"height scale {self.height_scale:g} is out of range; 0 … 10000")
+
+
+class DocumentEvents(SignalGroup):
+    params = Signal(int, object)  # grass type, PatchParams
+    lod = Signal(int, object)  # grass type, LodConfig
+    density = Signal(float)
+    slices = Signal(object)  # SliceParams
+    light = Signal(object)  # Lighting
+    cameras = Signal(object)  # dict name -> CameraSpec
+    terrain = Signal(object)  # Terrain, rebuilt after the height map changed
+
+
+class Document:
+    def __init__(
+        self,
+        name: str,
+        grass_types: list[GrassType] | tuple[GrassType, ...],
+        terrain: TerrainSpec,
+        maps: DesignMaps,
+        *,
+        description: str = "",
+        density: float = 1.0,
+        slices: SliceParams | None = None,
+        light: Lighting | None = None,
+        cameras: dict[str, CameraSpec] | None = None,
+        default_camera: str = "default",
+        paths: dict[str, tuple[CameraSpec, ...]] | None = None,
+        props: tuple[Prop, ...] = (),
+    ) -> None:
+        if not 1 <= len(grass_types) <= 4:
+            raise ValueError(f"a project has 1 … 4 grass types, not {len(grass_types)}")
+        channels = [kind.channel for kind in grass_types]
+        if len(set(channels)) != len(channels):
+            raise ValueError("two grass types share one density channel")
+        cameras = dict(cameras or {"default": CameraSpec((0.0, 5.0, 10.0), (0.0, 0.0, 0.0))})
+        if default_camera not in cameras:
+            raise ValueError(f"default camera {default_camera!r} is not one of the cameras")
+        self.events = DocumentEvents()
+        self.name, self.description = name, description
+        self._grass = list(grass_types)
+        self.terrain_spec = terrain
+        self.maps = maps
+        self._density = 1.0
+        self.density = density
+        self._slices = slices or SliceParams()
+        self._light = light or Lighting()
+        self._cameras = cameras
+        self.default_camera = default_camera
+        self.paths = dict(paths or {})
+        self.props = tuple(props)
+        self._terrain: Terrain | None = None
+
+    # -- grass types -------------------------------------------------------------------------
+    @property
+    def grass_types(self) -> tuple[GrassType, ...]:
+        return tuple(self._grass)
+
+    @property
+    def grass_names(self) -> list[str]:
+        return [kind.name for kind in self._grass]
+
+    def params(self, index: int) -> PatchParams:
+        return self._grass[index].params
+
+    def lod(self, index: int) -> LodConfig:
+        return self._grass[index].lod
+
+    def set_params(self, index: int, params: PatchParams) -> None:
+        if not isinstance(params, PatchParams):
+            raise TypeError("blade parameters must be a PatchParams")
+        kind = self._grass[index]
+        if params != kind.params:
+            self._grass[index] = GrassType(kind.name, params, kind.lod, kind.channel)
+            self.events.params.emit(index, params)
+
+    def set_lod(self, index: int, lod: LodConfig) -> None:
+        if not isinstance(lod, LodConfig):
+            raise TypeError("a grass type's LOD levels must be a LodConfig")
+        kind = self._grass[index]
+        if lod != kind.lod:
+            self._grass[index] = GrassType(kind.name, kind.params, lod, kind.channel)
+            self.events.lod.emit(index, lod)
+
+    # -- simple values -----------------------------------------------------------------------
+    @property
+    def density(self) -> float:
+        return self._density
+
+    @density.setter
+    def density(self, value: float) -> None:
+        if not 0.0 <= value <= 1.0:
+            raise ValueError(f"density = {value:g} is out of range; allowed 0 … 1")
+        if value != self._density:
+            self._density = float(value)
+            self.events.density.emit(self._density)
+
+    @property
+    def slices(self) -> SliceParams:
+        return self._slices
+
+    @slices.setter
+    def slices(self, value: SliceParams) -> None:
+        if not isinstance(value, SliceParams):
+            raise TypeError("slices must be a SliceParams")
+        if value != self._slices:
+            self._slices = value
+            self.events.slices.emit(value)
+
+    @property
+    def light(self) -> Lighting:
+        """Sun, ambient light and fog (core/lighting.py)."""
+        return self._light
+
+    @light.setter
+    def light(self, value: Lighting) -> None:
+        if not isinstance(value, Lighting):
+            raise TypeError("light must be a Lighting")
+        if value != self._light:
+            self._light = value
+            self.events.light.emit(value)
+
+    @property
+    def cameras(self) -> dict[str, CameraSpec]:
+        """The named cameras (bookmarks among them); a copy."""
+        return dict(self._cameras)
+
+    @cameras.setter
+    def cameras(self, value: dict[str, CameraSpec]) -> None:
+        value = dict(value)
+        if self.default_camera not in value:
+            raise ValueError(f"the default camera {self.default_camera!r} cannot be removed")
+        if value != self._cameras:
+            self._cameras = value
+            self.events.cameras.emit(dict(value))
+
+    def camera(self, name: str | None = None) -> Camera:
+        name = name or self.default_camera
+        if name not in self._cameras:
+            raise KeyError(name)
+        return self._cameras[name].camera()
+
+    def path_cameras(self, name: str, frames: int) -> list[Camera]:
+        """`frames` cameras spread along the named path."""
+        keys = self.paths[name]
+        near = min(k.near for k in keys)
+        far = max(k.far for k in keys)
+        return [
+            Camera.from_eye_target(eye, target, near=near, far=far)
+            for eye, target in sample_path([(k.eye, k.target) for k in keys], frames)
+        ]
+
+    # -- terrain and props -------------------------------------------------------------------
+    def heights(self) -> np.ndarray | None:
+        """The height map as the GPU holds it (half floats), so that the terrain's bounding
+        volumes and the rendered ground agree to the last bit; None on flat terrain."""
+        if self.terrain_spec.height_scale <= 0:
+            return None
+        h = self.maps.stack[LAYER_INDEX["height"], :, :, 0]
+        return h.astype(np.float16).astype(np.float32)
+
+    @property
+    def terrain(self) -> Terrain:
+        """The cells and their quadtree (core/terrain.py), built once and again only by
+        `rebuild_terrain` (after the height map changed)."""
+        if self._terrain is None:
+            t = self.terrain_spec
+            self._terrain = Terrain.centred(
+                t.columns,
+                t.rows,
+                mirror_seed=t.mirror_seed,
+                heights=self.heights(),
+                height_scale=t.height_scale,
+                grass_height=self._grass[0].params.patch_height,
+            )
+        return self._terrain
+
+    def rebuild_terrain(self) -> Terrain:
+        """Bounding volumes and ground ranges follow a changed height map."""
+        self._terrain = None
+        terrain = self.terrain
+        self.events.terrain.emit(terrain)
+        return terrain
+
+    def ground_at(self, x: float, z: float) -> float:
+        """World height of the ground at world (x, z)."""
+        heights = self.heights()
+        if heights is None:
+            return 0.0
+        t = self.terrain_spec
+        u, v = (x + t.columns / 2) / t.columns, (z + t.rows / 2) / t.rows
+        return float(bilinear(heights, np.array([u]), np.array([v]))[0]) * t.height_scale
+
+    def prop_boxes(self) -> np.ndarray:
+        """The props, standing on the ground where they are (their lift added to it)."""
+        return boxes(
+            (p.position, p.size, p.color, p.lift + self.ground_at(*p.position)) for p in self.props
+        )
+
+    # -- comparison --------------------------------------------------------------------------
+    def same_as(self, other: Document) -> bool:
+        """Equal in everything a project file keeps, the maps to the last bit."""
+        return (
+            self._fields() == other._fields()
+            and self.maps.stack.shape == other.maps.stack.shape
+            and bool(np.array_equal(self.maps.stack, other.maps.stack))
+        )
+
+    def _fields(self) -> tuple:
+        return (
+            self.name,
+            self.description,
+            tuple(self._grass),
+            self.terrain_spec,
+            self._density,
+            self._slices,
+            self._light,
+            self._cameras,
+            self.default_camera,
+            self.paths,
+            self.props,
+        )
