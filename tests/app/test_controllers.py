@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from app.autosave import Autosave
-from app.dialogs import CANCEL, DISCARD, SAVE, Dialogs, History, Settings
+from app.dialogs import CANCEL, DISCARD, SAVE, Dialogs, History
 from app.map_files import MapFileActions
 from app.painting import BrushPanel, PaintController
 from app.project_actions import ProjectActions
@@ -147,7 +147,7 @@ def test_a_bad_file_warns_and_keeps_the_open_project(tmp_path):
 def test_unsaved_changes_are_asked_about_before_opening(tmp_path, answer, opens, saves):
     good = tmp_path / "good.sward"
     save_project(good, doc())
-    projects, history, dialogs, opened, _ = actions(tmp_path, clean=False, answer=answer)
+    projects, _, dialogs, opened, _ = actions(tmp_path, clean=False, answer=answer)
     dialogs.save_path.return_value = str(tmp_path / "first.sward")
     assert projects.open(good) is opens
     assert len(opened) == int(opens)
