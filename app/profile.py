@@ -56,7 +56,7 @@ def profile(
     ok = all(v["parts_add_up"] for v in result["viewpoints"])
     result["parts_add_up"] = ok
     text += (
-        f"\nparts t_q + t_g + t_v + t_i + t_m + t_o (clear, resolve) "
+        f"\nparts t_q + t_u + t_g + t_v + t_i + t_m + t_o (clear, resolve) "
         f"{'add up to' if ok else 'DO NOT add up to'} t_a within "
         f"{SUM_TOLERANCE:.0%} + {SUM_ALLOWANCE_MS:g} ms in every frame"
     )

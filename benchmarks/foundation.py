@@ -35,7 +35,7 @@ def geometry_frame(runs: int = 5, size: tuple[int, int] = (1024, 768)) -> dict:
 
     doc = get_scene("patch-grid").document()
     renderer = HeadlessRenderer(doc, mode="geometry")
-    patch = renderer.pipeline.layers[0].patch
+    patch = renderer.pipeline.grass_types[0].patch
     camera = doc.camera()
     renderer.render(camera, size)  # warm up: shader JIT, buffers
     frames = [renderer.render(camera, size)[1] for _ in range(runs)]

@@ -99,14 +99,6 @@ class PatchParams:
                 return f.metadata["spec"]
         raise KeyError(name)
 
-    @property
-    def vertex_count(self) -> int:
-        return self.blade_count * (self.subdivisions + 1) * 2
-
-    @property
-    def triangle_count(self) -> int:
-        return self.blade_count * self.subdivisions * 2
-
 
 def _check_scalar(name: str, value: Any, spec: Spec) -> None:
     if isinstance(value, bool) or not isinstance(value, (int, float)):

@@ -43,14 +43,6 @@ class GrassPatch:
     def blade_count(self) -> int:
         return int(self.roots.shape[0])
 
-    @property
-    def triangle_count(self) -> int:
-        return int(self.indices.size // 3)
-
-    @property
-    def vertices_per_blade(self) -> int:
-        return (self.params.subdivisions + 1) * 2
-
 
 def generate_patch(params: PatchParams) -> GrassPatch:
     """Generate the patch for `params`; the same parameters always give the same patch."""

@@ -90,15 +90,6 @@ def world_to_texel(terrain: Terrain, map_size: tuple[int, int], x: float, z: flo
     )
 
 
-def texel_to_world(terrain: Terrain, map_size: tuple[int, int], cx, cy):
-    """World (x, z) of design-map positions (columns, rows) in texels."""
-    w, h = map_size
-    return (
-        terrain.origin[0] + np.asarray(cx, np.float64) / w * terrain.columns,
-        terrain.origin[1] + np.asarray(cy, np.float64) / h * terrain.rows,
-    )
-
-
 def ground_circle(terrain: Terrain, x: float, z: float, radius: float, points: int = 64):
     """(points, 3) world positions of a circle lying on the ground, lifted a little above it."""
     a = np.linspace(0.0, 2.0 * np.pi, points)

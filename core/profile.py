@@ -12,7 +12,7 @@ import numpy as np
 from core.stats import FrameStats
 
 COLUMNS = ("fps", "t_a", "t_q", "t_g", "t_v", "t_i", "t_m", "c_g", "c_v", "c_i")
-# The parts (t_q + t_g + t_v + t_i + t_m + t_o) must lie within this fraction of t_a, plus a
+# The parts (t_q + t_u + t_g + t_v + t_i + t_m + t_o) must lie within this fraction of t_a, plus a
 # small fixed allowance for the Python between the measured passes.
 SUM_TOLERANCE = 0.10
 SUM_ALLOWANCE_MS = 3.0
@@ -31,7 +31,7 @@ def summarize(frames: list[FrameStats]) -> dict[str, dict[str, float]]:
     if not frames:
         raise ValueError("no frames to summarize")
     out = {}
-    for column in (*COLUMNS, "t_o"):
+    for column in (*COLUMNS, "t_u", "t_o"):
         values = np.array([_value(f, column) for f in frames])
         out[column] = {
             "median": float(np.median(values)),
@@ -48,7 +48,7 @@ def summarize(frames: list[FrameStats]) -> dict[str, dict[str, float]]:
 
 
 def parts_add_up(stats: FrameStats) -> bool:
-    """t_q + t_g + t_v + t_i + t_m + t_o lies within the tolerance of t_a (and not above it)."""
+    """t_q + t_u + t_g + t_v + t_i + t_m + t_o lies within the tolerance of t_a (and not above it)."""
     gap = stats.t_a_ms - stats.parts_ms
     return -0.5 <= gap <= SUM_TOLERANCE * stats.t_a_ms + SUM_ALLOWANCE_MS
 
@@ -72,6 +72,7 @@ WINDOW = 60  # frames the live overlay averages over
 RECORD_COLUMNS = (
     "t_a_ms",
     "t_q_ms",
+    "t_u_ms",
     "t_g_ms",
     "t_v_ms",
     "t_i_ms",

@@ -7,13 +7,14 @@ from dataclasses import asdict, dataclass, field
 
 @dataclass
 class FrameStats:
-    """t_a whole frame; t_q LOD selection on the CPU (the quadtree traversal and the instance
-    uploads); t_g / t_v / t_i geometry, volume and image-based grass; t_m the rest of the
+    """t_a whole frame; t_q LOD selection on the CPU (the quadtree traversal, the bare-cell
+    filter, core/draw_list.py); t_u the instance uploads of what was selected; t_g / t_v / t_i geometry, volume and image-based grass; t_m the rest of the
     scenery (ground, props); t_o clearing and resolving the multisampled image. c_* are
     instance counts."""
 
     t_a_ms: float = 0.0
     t_q_ms: float = 0.0
+    t_u_ms: float = 0.0
     t_g_ms: float = 0.0
     t_v_ms: float = 0.0
     t_i_ms: float = 0.0
@@ -29,10 +30,12 @@ class FrameStats:
     # per grass type and LOD level drawn: (type index, representation, slices, instances)
     levels: list[tuple[int, str, int, int]] = field(default_factory=list)
 
-    def level_count(self, layer: int, representation: str, slices: int = 0) -> int:
+    def level_count(self, grass_type: int, representation: str, slices: int = 0) -> int:
         """Instances the LOD level (representation, slices) of one grass type drew."""
         return sum(
-            n for i, r, s, n in self.levels if (i, r) == (layer, representation) and s == slices
+            n
+            for i, r, s, n in self.levels
+            if (i, r) == (grass_type, representation) and s == slices
         )
 
     @property
@@ -43,7 +46,15 @@ class FrameStats:
     def parts_ms(self) -> float:
         """The measured parts; with measured frames they add up to nearly t_a (the rest is
         Python between the passes)."""
-        return self.t_q_ms + self.t_g_ms + self.t_v_ms + self.t_i_ms + self.t_m_ms + self.t_o_ms
+        return (
+            self.t_q_ms
+            + self.t_u_ms
+            + self.t_g_ms
+            + self.t_v_ms
+            + self.t_i_ms
+            + self.t_m_ms
+            + self.t_o_ms
+        )
 
     def to_dict(self) -> dict:
         d = asdict(self)

@@ -2,7 +2,7 @@
 
 Breadth-first and vectorised: each tree level is one set of numpy operations over the nodes
 still in play, never a Python loop over nodes or cells. A (nodes × LOD levels) mask holds which
-levels still have to decide a node; the LOD tests of core/lod_tests.py clear entries (discard),
+levels still have to decide a node; the LOD criteria of core/lod_criteria.py clear entries (discard),
 draw a node whole as a macro-cell, or leave it to its children, which inherit the mask (the skip
 flags of Fig. 6.3). Sphere + cone culling drops nodes outside the view. Leaves are classified
 exactly as core/lod.select classifies cells, so without culling both give the same cells.
@@ -14,11 +14,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core import lod_tests
+from core import lod_criteria
 from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lod import ALL_IN, LodConfig, classify, weight_near
-from core.lod_tests import Levels
+from core.lod_criteria import Levels
 from core.terrain import Terrain
 
 
@@ -28,9 +28,6 @@ class DrawList:
 
     levels: list[np.ndarray]
     visited: int  # nodes tested
-
-    def count(self, level: int) -> int:
-        return int(self.levels[level].size)
 
 
 def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None = None) -> DrawList:
@@ -59,16 +56,16 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
             records.append(_leaves(terrain, eye, config, ix, iz, active))
             break
         nodes = _nodes(eye, ox, oz, (x0, z0, x1, z1), 1 << level, y_lo, y_hi)
-        active &= lod_tests.distance(nodes, lv)
-        is_flat = lod_tests.flat(nodes, lv)
+        active &= lod_criteria.distance(nodes, lv)
+        is_flat = lod_criteria.flat(nodes, lv)
         box = (x0, z0, x1 - x0, z1 - z0, y_lo, y_hi)
-        node, t = np.nonzero(active & is_flat & lod_tests.macro_cell(nodes, lv))
+        node, t = np.nonzero(active & is_flat & lod_criteria.macro_cell(nodes, lv))
         if node.size:
             lod_w = np.full(node.size, ALL_IN, np.float32)
             records.append((*(a[node] for a in box), t, lod_w, np.zeros(node.size, np.float32)))
             active[node, t] = False
         pair = active[:, :-1] & active[:, 1:] & is_flat[:, :-1] & is_flat[:, 1:]
-        node, t = np.nonzero(pair & lod_tests.shared(nodes, lv))
+        node, t = np.nonzero(pair & lod_criteria.shared(nodes, lv))
         if node.size:
             records.extend(_pair_records(eye, ox, oz, box, node, t, lv.begin, lv.end))
             active[node, t] = False
@@ -82,7 +79,7 @@ def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None =
     return DrawList(levels_out, visited)
 
 
-def _nodes(eye, ox, oz, extent, span, y_lo, y_hi) -> lod_tests.Nodes:
+def _nodes(eye, ox, oz, extent, span, y_lo, y_hi) -> lod_criteria.Nodes:
     """Horizontal distances from the eye to the nearest and farthest cell centre of each node."""
     x0, z0, x1, z1 = extent
     cx0, cx1 = ox + x0 + 0.5, ox + x1 - 0.5
@@ -93,7 +90,7 @@ def _nodes(eye, ox, oz, extent, span, y_lo, y_hi) -> lod_tests.Nodes:
         np.maximum(np.abs(eye[0] - cx0), np.abs(eye[0] - cx1)),
         np.maximum(np.abs(eye[2] - cz0), np.abs(eye[2] - cz1)),
     )
-    return lod_tests.Nodes(np.hypot(dx, dz)[:, None], dmax[:, None], span, y_lo, y_hi)
+    return lod_criteria.Nodes(np.hypot(dx, dz)[:, None], dmax[:, None], span, y_lo, y_hi)
 
 
 def _leaves(terrain, eye, config, ix, iz, active) -> tuple:

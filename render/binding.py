@@ -60,7 +60,7 @@ class DocumentBinding:
 
     def _patch_for(self, index: int, params: PatchParams) -> None:
         if self._request is None:
-            self.pipeline.set_layer_patch(index, generate_patch(params))
+            self.pipeline.set_patch(index, generate_patch(params))
         else:
             self._request(index, params)
 
@@ -69,7 +69,7 @@ class DocumentBinding:
         if patch.params != self.document.params(index):
             return  # made for parameters the document no longer has
         with self.current():
-            self.pipeline.set_layer_patch(index, patch)
+            self.pipeline.set_patch(index, patch)
         self.changed()
 
     def detach(self) -> None:
@@ -86,10 +86,10 @@ class DocumentBinding:
         if self._request is not None:
             self._request(index, params)
         else:
-            self._apply(lambda: self.pipeline.set_layer_patch(index, generate_patch(params)))
+            self._apply(lambda: self.pipeline.set_patch(index, generate_patch(params)))
 
     def _on_lod(self, index: int, lod) -> None:
-        self._apply(lambda: self.pipeline.set_layer_lod(index, lod))
+        self._apply(lambda: self.pipeline.set_lod(index, lod))
 
     def _on_density(self, density: float) -> None:
         self._apply(lambda: self.pipeline.set_density(density))

@@ -15,6 +15,7 @@ import numpy as np
 
 from core.camera import Camera
 from core.design_maps import DesignMaps
+from core.draw_list import draw_list
 from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
@@ -25,29 +26,28 @@ from core.patch import GrassPatch
 from core.stats import FrameStats
 from core.terrain import Terrain
 from core.view_mode import ViewMode
-from render.context import release_framebuffer
 from render.conversion import PatchConverter
 from render.design_maps import DesignMapTextures, union
 from render.geometry import GeometryRenderer
+from render.grass_type import GrassTypeRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
-from render.layer import GrassLayer
 from render.overlay import OverlayRenderer
+from render.present import PREVIEW_SCALE, Presenter, opaque_alpha, release_fbo
 from render.props import PropRenderer
-from render.shaders import load_program
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
-
-PREVIEW_SCALE = 2  # preview frames are drawn at 1 / 2 of the width and height
 
 
 class FramePipeline:
     def __init__(self, ctx: moderngl.Context, samples: int = 4) -> None:
         self.ctx = ctx
         self.samples = max(0, min(samples, ctx.max_samples))
-        # one layer per grass type (thesis 6.4.5); the first is the patch being designed
-        self.layers: list[GrassLayer] = [GrassLayer(ctx, 0)]  # set_grass_types replaces it
+        # one renderer set per grass type (thesis 6.4.5); the first is the patch being designed
+        self.grass_types: list[GrassTypeRenderer] = [
+            GrassTypeRenderer(ctx, 0)
+        ]  # set_grass_types replaces it
         self.ground = GroundRenderer(ctx)
         self.props = PropRenderer(ctx)
         self.overlay = OverlayRenderer(ctx)  # brush outline, LOD rings: drawn last, untimed
@@ -59,51 +59,51 @@ class FramePipeline:
         self.auto_convert = True
         self._converter: PatchConverter | None = None
         self.lighting = Lighting()
-        self.design = DesignMapTextures(ctx, DesignMaps(1))  # neutral until a scene brings maps
+        self.map_textures = DesignMapTextures(
+            ctx, DesignMaps(1)
+        )  # neutral until a scene brings maps
         # cells without grass per grass type, skipped before drawing (core/occupancy.py)
         self._occupancy: DensityOccupancy | None = None
         self.skip_bare_cells = True
         self._density_dirty: tuple[int, int, int, int] | None = None
-        self.design.maps.changed.connect(self._on_map_changed)
+        self.map_textures.maps.changed.connect(self._on_map_changed)
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
-        self._preview: moderngl.Framebuffer | None = None  # half-resolution frames
-        self._present_vao: moderngl.VertexArray | None = None
-        self._present_vbo: moderngl.Buffer | None = None
+        self.present = Presenter(ctx)  # half-resolution preview frames, scaled up
 
     # -- the first grass type, as the designer and the tests reach it -------------------------
     @property
     def geometry(self) -> GeometryRenderer:
-        return self.layers[0].geometry
+        return self.grass_types[0].geometry
 
     @property
     def image(self) -> ImageRenderer:
-        return self.layers[0].image
+        return self.grass_types[0].image
 
     @property
     def volume(self) -> VolumeRenderer:
         """The volume renderer of the designer's slice count (volume-only and compare modes)."""
-        return self.layers[0].volume(self.slice_params.slices)
+        return self.grass_types[0].volume(self.slice_params.slices)
 
     @property
     def lod(self) -> LodConfig:
-        return self.layers[0].lod
+        return self.grass_types[0].lod
 
     # -- scene state (render/binding.py keeps it in step with the document) -------------------
     def set_grass_types(self, types: list[tuple[LodConfig, int]]) -> None:
-        """One layer per grass type: (LOD levels, density-map channel); patches follow."""
+        """One renderer set per grass type: (LOD levels, density-map channel); patches follow."""
         density = self.geometry.density
-        for layer in self.layers:
-            layer.release()
-        self.layers = []
+        for kind in self.grass_types:
+            kind.release()
+        self.grass_types = []
         for lod, channel in types:
-            layer = GrassLayer(self.ctx, channel)
-            layer.lod = lod
-            layer.set_instances(self._instances)
-            layer.set_density(density)
-            self.layers.append(layer)
+            kind = GrassTypeRenderer(self.ctx, channel)
+            kind.lod = lod
+            kind.set_instances(self._instances)
+            kind.set_density(density)
+            self.grass_types.append(kind)
 
     def set_mode(self, mode: str) -> None:
         """How the cells are drawn: a ViewMode (core/view_mode.py)."""
@@ -113,14 +113,14 @@ class FramePipeline:
             for renderer in (self.geometry, self.volume, self.image):
                 renderer.set_instances(self._instances)
 
-    def set_layer_patch(self, index: int, patch: GrassPatch) -> None:
+    def set_patch(self, index: int, patch: GrassPatch) -> None:
         """A new patch for one grass type (0: the first)."""
-        self.layers[index].geometry.set_patch(patch)
+        self.grass_types[index].geometry.set_patch(patch)
         self._convert()
 
-    def set_layer_lod(self, index: int, lod: LodConfig) -> None:
+    def set_lod(self, index: int, lod: LodConfig) -> None:
         """The LOD levels of one grass type, patch and slices kept."""
-        self.layers[index].lod = lod
+        self.grass_types[index].lod = lod
         self._convert()
 
     def set_slice_params(self, params: SliceParams) -> None:
@@ -130,11 +130,11 @@ class FramePipeline:
         self._convert()
 
     def missing(self) -> list[tuple[int, int]]:
-        """(layer, slice count) pairs the current mode needs and nobody converted yet."""
+        """(kind, slice count) pairs the current mode needs and nobody converted yet."""
         return [
             (i, n)
-            for i, layer in enumerate(self.layers)
-            for n in layer.missing_slices(self.mode, self.slice_params)
+            for i, kind in enumerate(self.grass_types)
+            for n in kind.missing_slices(self.mode, self.slice_params)
         ]
 
     @property
@@ -148,17 +148,17 @@ class FramePipeline:
         return self._converter
 
     def set_slice_textures(
-        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams, layer: int = 0
+        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams, kind: int = 0
     ) -> None:
         """Slices converted elsewhere (step by step) for `patch` with `params`."""
-        self.layers[layer].set_slice_textures(textures, patch, params, self.slice_params.slices)
+        self.grass_types[kind].set_slice_textures(textures, patch, params, self.slice_params.slices)
 
     def _convert(self) -> None:
         """Slices of every grass type's patch for the volume and image renderers (4.2)."""
         if not self.auto_convert:
             return
-        for layer in self.layers:
-            layer.convert(self.converter, self.mode, self.slice_params)
+        for kind in self.grass_types:
+            kind.convert(self.converter, self.mode, self.slice_params)
 
     def set_props(self, props: np.ndarray) -> None:
         """Boxes standing in the grass (core/props.py), drawn with the ground."""
@@ -166,9 +166,9 @@ class FramePipeline:
 
     def set_design_maps(self, maps: DesignMaps) -> None:
         """The design-map stack every renderer samples; later edits upload their rectangles."""
-        self.design.maps.changed.disconnect(self._on_map_changed)
-        self.design.release()
-        self.design = DesignMapTextures(self.ctx, maps)
+        self.map_textures.maps.changed.disconnect(self._on_map_changed)
+        self.map_textures.release()
+        self.map_textures = DesignMapTextures(self.ctx, maps)
         maps.changed.connect(self._on_map_changed)
         self._occupancy = None
 
@@ -185,10 +185,12 @@ class FramePipeline:
             t.columns,
             t.rows,
         ):
-            self._occupancy = DensityOccupancy(t.columns, t.rows, self.design.maps.layer("density"))
+            self._occupancy = DensityOccupancy(
+                t.columns, t.rows, self.map_textures.maps.layer("density")
+            )
             self._density_dirty = None
         elif self._density_dirty is not None:
-            self._occupancy.update(self.design.maps.layer("density"), self._density_dirty)
+            self._occupancy.update(self.map_textures.maps.layer("density"), self._density_dirty)
             self._density_dirty = None
         return self._occupancy
 
@@ -204,8 +206,8 @@ class FramePipeline:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.terrain = None
         self._instances = instances
-        for layer in self.layers:
-            layer.set_instances(instances)
+        for kind in self.grass_types:
+            kind.set_instances(instances)
         if instances.size:
             lo = instances["origin"]
             hi = lo + instances["size"]
@@ -217,15 +219,15 @@ class FramePipeline:
             )
 
     def set_density(self, density: float) -> None:
-        for layer in self.layers:
-            layer.set_density(density)
+        for kind in self.grass_types:
+            kind.set_density(density)
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
         key = (*size, samples)
         if key not in self._targets:
             for old in [k for k in self._targets if k[:2] != size]:  # a resize drops old sizes
-                _release_fbo(self._targets.pop(old))
+                release_fbo(self._targets.pop(old))
             color = self.ctx.renderbuffer(size, 4, samples=samples)
             depth = self.ctx.depth_renderbuffer(size, samples=samples)
             self._targets[key] = self.ctx.framebuffer(color, depth)
@@ -251,7 +253,7 @@ class FramePipeline:
         t0 = time.perf_counter()
         if preview:
             dw, dh = max(1, w // PREVIEW_SCALE), max(1, h // PREVIEW_SCALE)
-            fbo = self._preview_target((dw, dh))
+            fbo = self.present.target((dw, dh))
         else:
             dw, dh = w, h
             fbo = self._target(size, self.samples)
@@ -270,10 +272,10 @@ class FramePipeline:
             self._draw(camera, (0, 0, dw, dh), self.mode, stats, measure)
         t1 = time.perf_counter()
         if preview:
-            self._present(fbo, out, size)
+            self.present.scale_up(fbo, out, size)
         else:
             ctx.viewport = (0, 0, w, h)
-            _opaque_alpha(fbo)
+            opaque_alpha(fbo)
             ctx.copy_framebuffer(out, fbo)
         if measure:
             ctx.finish()
@@ -281,32 +283,6 @@ class FramePipeline:
         stats.t_o_ms += (end - t1) * 1000.0
         stats.t_a_ms = (end - t0) * 1000.0
         return stats
-
-    def _preview_target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
-        """A single-sampled frame with a texture to scale up (one size kept)."""
-        if self._preview is None or self._preview.size != size:
-            if self._preview is not None:
-                _release_fbo(self._preview)
-            color = self.ctx.texture(size, 4)
-            color.filter = (moderngl.LINEAR, moderngl.LINEAR)
-            self._preview = self.ctx.framebuffer(color, self.ctx.depth_renderbuffer(size))
-        return self._preview
-
-    def _present(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size) -> None:
-        if self._present_vao is None:
-            program = load_program(self.ctx, "present.glsl")
-            corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)
-            self._present_vbo = self.ctx.buffer(corners.tobytes())
-            self._present_vao = self.ctx.vertex_array(
-                program, [(self._present_vbo, "2f", "in_corner")]
-            )
-            program["u_frame"].value = 0
-        out.use()
-        self.ctx.viewport = (0, 0, *size)
-        self.ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
-        fbo.color_attachments[0].use(0)
-        self._present_vao.render(moderngl.TRIANGLE_STRIP)
-        self.ctx.enable(moderngl.DEPTH_TEST)
 
     def _draw(
         self,
@@ -342,7 +318,7 @@ class FramePipeline:
                 ctx.finish()
             return (time.perf_counter() - start) * 1000.0
 
-        self.design.use()
+        self.map_textures.use()
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
@@ -350,26 +326,31 @@ class FramePipeline:
         occupancy = self.occupancy()
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         drawn = []
-        for index, layer in enumerate(self.layers):
+        for index, kind in enumerate(self.grass_types):
             tq = time.perf_counter()
-            batches = layer.batches(
+            cells = draw_list(
                 mode,
-                camera,
-                w / max(h, 1),
+                kind.lod,
+                camera.eye,
                 self.terrain,
+                self._instances,
                 frustum,
                 self.slice_params.slices,
                 occupancy,
+                kind.density_channel,
             )
-            stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
+            tu = time.perf_counter()
+            stats.t_q_ms += (tu - tq) * 1000.0
+            batches = kind.upload(cells)
+            stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
-            patch = layer.patch
+            patch = kind.patch
             for (representation, slices), (_renderer, count) in batches.items():
                 stats.levels.append((index, representation, slices, count))
                 counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
                 setattr(stats, counter, getattr(stats, counter) + count)
                 if representation == "geometry" and patch is not None:
-                    visible = int(np.count_nonzero(patch.thresholds <= layer.geometry.density))
+                    visible = int(np.count_nonzero(patch.thresholds <= kind.geometry.density))
                     stats.blades += visible * count
                     stats.triangles += visible * count * patch.params.subdivisions * 2
         # The volume blends its partly covered fragments over what is already drawn, so it goes
@@ -386,23 +367,19 @@ class FramePipeline:
         self.overlay.draw(frame)
 
     def release(self) -> None:
-        for layer in self.layers:
-            layer.release()
+        for kind in self.grass_types:
+            kind.release()
         self.ground.release()
         self.props.release()
         self.overlay.release()
-        self.design.maps.changed.disconnect(self._on_map_changed)
-        self.design.release()
+        self.map_textures.maps.changed.disconnect(self._on_map_changed)
+        self.map_textures.release()
         if self._converter is not None:
             self._converter.release()
         for fbo in self._targets.values():
-            _release_fbo(fbo)
+            release_fbo(fbo)
         self._targets.clear()
-        if self._preview is not None:
-            _release_fbo(self._preview)
-        for obj in (self._present_vao, self._present_vbo):
-            if obj is not None:
-                obj.release()
+        self.present.release()
 
 
 def _passes(renderer, frame: FrameUniforms) -> None:
@@ -410,20 +387,3 @@ def _passes(renderer, frame: FrameUniforms) -> None:
     renderer.prepare(frame)
     renderer.draw()
     renderer.finalize()
-
-
-def _opaque_alpha(fbo: moderngl.Framebuffer) -> None:
-    """Set every pixel's alpha to 1. Alpha-to-coverage and the alpha test leave the fragment's
-    alpha in the image; a window compositor (Qt draws the viewport's framebuffer over the window)
-    would show the background through the grass."""
-    fbo.color_mask = (False, False, False, True)
-    fbo.depth_mask = False
-    fbo.use()
-    fbo.clear(0.0, 0.0, 0.0, 1.0)
-    fbo.color_mask = (True, True, True, True)
-    fbo.depth_mask = True
-    fbo.use()
-
-
-def _release_fbo(fbo: moderngl.Framebuffer) -> None:
-    release_framebuffer(fbo, *fbo.color_attachments, fbo.depth_attachment)

@@ -9,6 +9,7 @@ point at the right line, and names the file when a program fails to build.
 from __future__ import annotations
 
 import re
+import weakref
 from importlib import resources
 
 import moderngl
@@ -54,14 +55,18 @@ def program_names() -> list[str]:
     return sorted(f.name for f in files if f.name.endswith(".glsl") and not f.name.startswith("_"))
 
 
-_cache: dict[tuple[int, str], moderngl.Program] = {}
+# per context object (not its id: a new context at a reused address must not get dead
+# programs), then per file; a context that goes away takes its programs with it
+_cache: weakref.WeakKeyDictionary[moderngl.Context, dict[str, moderngl.Program]] = (
+    weakref.WeakKeyDictionary()
+)
 
 
 def load_program(ctx: moderngl.Context, name: str) -> moderngl.Program:
     """The compiled program in shaders/NAME, cached per context."""
-    key = (id(ctx), name)
-    if key in _cache:
-        return _cache[key]
+    programs = _cache.setdefault(ctx, {})
+    if name in programs:
+        return programs[name]
     try:
         program = ctx.program(
             vertex_shader=stage_source(name, "VERTEX_SHADER"),
@@ -71,11 +76,5 @@ def load_program(ctx: moderngl.Context, name: str) -> moderngl.Program:
         raise
     except Exception as exc:
         raise ShaderError(f"shaders/{name} failed to build:\n{exc}") from exc
-    _cache[key] = program
+    programs[name] = program
     return program
-
-
-def forget_context(ctx: moderngl.Context) -> None:
-    """Drop the cached programs of a context that is going away."""
-    for key in [k for k in _cache if k[0] == id(ctx)]:
-        del _cache[key]

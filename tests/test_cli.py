@@ -113,7 +113,8 @@ def test_profile_prints_the_table_and_the_parts_add_up(tmp_path):
         assert len(view["frames"]) == 2 and view["parts_add_up"]
         for frame in view["frames"]:
             parts = sum(
-                frame[k] for k in ("t_q_ms", "t_g_ms", "t_v_ms", "t_i_ms", "t_m_ms", "t_o_ms")
+                frame[k]
+                for k in ("t_q_ms", "t_u_ms", "t_g_ms", "t_v_ms", "t_i_ms", "t_m_ms", "t_o_ms")
             )
             assert parts <= frame["t_a_ms"] + 0.5
             assert parts >= 0.9 * frame["t_a_ms"] - 3.0

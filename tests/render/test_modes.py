@@ -46,7 +46,7 @@ def test_slices_converted_outside_follow_patch_and_parameters(ctx):
     doc = document()
     binding = DocumentBinding(pipeline, doc)
     try:
-        patch = pipeline.layers[0].patch
+        patch = pipeline.grass_types[0].patch
         assert pipeline.needs_slices  # nothing converted yet, and nothing converted by itself
         sp = SliceParams(slices=2, width=64, height=16, top=32)
         doc.slices = sp

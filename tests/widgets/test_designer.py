@@ -278,7 +278,7 @@ def test_each_grass_type_has_its_own_blades(window, qtbot, tmp_path):
     panel.param("blade_count").setValue(700)
     assert window.document.params(1).blade_count == 700
     assert window.document.params(0) == first  # the first type keeps its blades
-    layer = window.viewport.pipeline.layers[1]
+    layer = window.viewport.pipeline.grass_types[1]
     qtbot.waitUntil(
         lambda: layer.patch is not None and layer.patch.params.blade_count == 700, timeout=20000
     )

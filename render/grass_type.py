@@ -1,22 +1,17 @@
 """One grass type on the terrain (thesis 6.4.5): its patch, its slices, its LOD levels and the
-renderers that draw it. The frame pipeline draws one layer per grass type over the shared
-terrain, ground and design maps; each layer reads its own channel of the density map."""
+renderers that draw it. The frame pipeline draws one renderer set per grass type over the shared
+terrain, ground and design maps; each reads its own channel of the density map."""
 
 from __future__ import annotations
 
 import moderngl
 import numpy as np
 
-from core.camera import Camera
-from core.frustum import Frustum
+from core.draw_list import DrawList
 from core.grid import INSTANCE_DTYPE
-from core.lod import LodConfig, LodLevel
-from core.lod import select as lod_select
-from core.occupancy import DensityOccupancy
+from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
-from core.terrain import Terrain
-from core.traversal import traverse
 from render.conversion import PatchConverter
 from render.geometry import GeometryRenderer
 from render.image import ImageRenderer
@@ -34,7 +29,7 @@ def volume_technique_color(slices: int) -> tuple[float, float, float]:
     return (1.0, 0.97, 0.38)
 
 
-class GrassLayer:
+class GrassTypeRenderer:
     def __init__(self, ctx: moderngl.Context, density_channel: int = 0) -> None:
         self.ctx = ctx
         self.density_channel = density_channel
@@ -82,7 +77,7 @@ class GrassLayer:
 
     # -- slices ------------------------------------------------------------------------------
     def required_slices(self, mode: str, sp: SliceParams) -> list[int]:
-        """Slice counts the mode draws this layer with."""
+        """Slice counts the mode draws this grass type with."""
         if mode == "geometry" or self.patch is None:
             return []
         if mode == "lod":
@@ -126,50 +121,18 @@ class GrassLayer:
             self.set_slice_textures(textures, patch, sp.replace(slices=n), sp.slices)
 
     # -- drawing -----------------------------------------------------------------------------
-    def batches(
-        self,
-        mode: str,
-        camera: Camera,
-        aspect: float,
-        terrain: Terrain | None,
-        frustum: Frustum | None,
-        slices: int,
-        occupancy: DensityOccupancy | None = None,
-    ) -> dict[tuple[str, int], tuple[object, int]]:
-        """(representation, slices) → (renderer, instance count) for one view. In LOD mode the cells of every level are selected by distance and levels
-        that share a renderer are drawn in one call; otherwise one representation draws every
-        cell (no macro-cells)."""
-        if mode == "lod":
-            config = self.lod
-        else:
-            config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
-        if terrain is not None:
-            parts = traverse(terrain, camera.eye, config, frustum).levels
-            if occupancy is not None:  # (macro-)cells where this type's density map is zero
-                parts = [part[self._grows(part, terrain, occupancy)] for part in parts]
-        elif mode == "lod":
-            parts = lod_select(self._instances, camera.eye, config)
-        else:
-            parts = [self._instances]
-        grouped: dict[tuple[str, int], list[np.ndarray]] = {}
-        for level, part in zip(config.levels, parts, strict=True):
-            grouped.setdefault(level.key, []).append(part)
+    def upload(self, cells: DrawList) -> dict[tuple[str, int], tuple[object, int]]:
+        """Hand each renderer its cells (one instance upload each): (representation, slices)
+        -> (renderer, instance count)."""
         batches = {}
-        for key, chunks in grouped.items():
-            cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
+        for key, instances in cells.batches.items():
             representation, n = key
             renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
             if renderer is None:
                 renderer = self.volume(n)
-            renderer.set_instances(cells)
-            batches[key] = (renderer, int(cells.size))
+            renderer.set_instances(instances)
+            batches[key] = (renderer, int(instances.size))
         return batches
-
-    def _grows(self, cells: np.ndarray, terrain: Terrain, occupancy: DensityOccupancy):
-        ix = np.rint(cells["origin"][:, 0] - terrain.origin[0])
-        iz = np.rint(cells["origin"][:, 1] - terrain.origin[1])
-        sx, sz = np.rint(cells["size"][:, 0]), np.rint(cells["size"][:, 1])
-        return occupancy.occupied(self.density_channel, ix, iz, sx, sz)
 
     def release(self) -> None:
         for renderer in self.renderers:

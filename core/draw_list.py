@@ -1,0 +1,76 @@
+"""The one hand-off from selection to drawing: for one grass type and one view, the cells each
+renderer draws, grouped by (representation, slices), with the bare-cell filter applied. A pure
+query on arrays (no GL): render/ uploads what it returns (STYLE.md: a query does not upload).
+
+In LOD mode the cells of every level are selected by distance (the quadtree traversal on a
+terrain, core/traversal.py; a plain distance test on a fixed set of cells), and levels that share
+a renderer are drawn in one call; in a single-representation mode every cell is drawn by it,
+without macro-cells (the thesis's Table 7.1 comparisons)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from core.frustum import Frustum
+from core.lod import LodConfig, LodLevel
+from core.lod import select as lod_select
+from core.occupancy import DensityOccupancy
+from core.terrain import Terrain
+from core.traversal import traverse
+from core.view_mode import ViewMode
+
+Key = tuple[str, int]  # (representation, slices per direction; 0 unless volume)
+
+
+@dataclass
+class DrawList:
+    """(representation, slices) -> the cells to draw (macro-cells have size > 1)."""
+
+    batches: dict[Key, np.ndarray] = field(default_factory=dict)
+
+    def counts(self) -> dict[Key, int]:
+        return {key: int(cells.size) for key, cells in self.batches.items()}
+
+
+def draw_list(
+    mode: str,
+    lod: LodConfig,
+    eye,
+    terrain: Terrain | None,
+    instances: np.ndarray,
+    frustum: Frustum | None,
+    slices: int,
+    occupancy: DensityOccupancy | None = None,
+    channel: int = 0,
+) -> DrawList:
+    """What one grass type draws for one view. `mode` a ViewMode; `slices` the slice count a
+    single-representation volume view uses; `occupancy` drops (macro-)cells where the type's
+    density channel is zero everywhere."""
+    if mode == ViewMode.LOD:
+        config = lod
+    else:
+        config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
+    if terrain is not None:
+        parts = traverse(terrain, eye, config, frustum).levels
+        if occupancy is not None:
+            parts = [part[_grows(part, terrain, occupancy, channel)] for part in parts]
+    elif mode == ViewMode.LOD:
+        parts = lod_select(instances, eye, config)
+    else:
+        parts = [instances]
+    grouped: dict[Key, list[np.ndarray]] = {}
+    for level, part in zip(config.levels, parts, strict=True):
+        grouped.setdefault(level.key, []).append(part)
+    out = DrawList()
+    for key, chunks in grouped.items():
+        out.batches[key] = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
+    return out
+
+
+def _grows(cells: np.ndarray, terrain: Terrain, occupancy: DensityOccupancy, channel: int):
+    ix = np.rint(cells["origin"][:, 0] - terrain.origin[0])
+    iz = np.rint(cells["origin"][:, 1] - terrain.origin[1])
+    sx, sz = np.rint(cells["size"][:, 0]), np.rint(cells["size"][:, 1])
+    return occupancy.occupied(channel, ix, iz, sx, sz)
