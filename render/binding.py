@@ -45,6 +45,9 @@ class DocumentBinding:
             self._fully_synchronize()
         for name, handler in self._handlers.items():
             getattr(document.events, name).connect(handler)
+        # the map textures upload their dirty rectangles at the next frame by themselves
+        # (render/design_maps.py); an edit, an undo or an import only needs that frame
+        document.maps.changed.connect(self._on_maps_changed)
 
     def _fully_synchronize(self) -> None:
         d, p = self.document, self.pipeline
@@ -75,6 +78,7 @@ class DocumentBinding:
     def detach(self) -> None:
         for name, handler in self._handlers.items():
             getattr(self.document.events, name).disconnect(handler)
+        self.document.maps.changed.disconnect(self._on_maps_changed)
 
     # -- events ------------------------------------------------------------------------------
     def _apply(self, fn: Callable[[], object]) -> None:
@@ -102,6 +106,9 @@ class DocumentBinding:
             self.pipeline.lighting = light
 
         self._apply(set_light)
+
+    def _on_maps_changed(self, _name: str, _rect) -> None:
+        self.changed()
 
     def _on_terrain(self, terrain) -> None:
         self._apply(lambda: self.pipeline.set_terrain(terrain))

@@ -1,0 +1,87 @@
+"""The one binding from the document to a frame pipeline: fully synchronised when attached,
+then every change of the document reaches the pipeline, and nothing after it is detached."""
+
+import dataclasses
+
+import numpy as np
+
+from app.scenes import get_scene
+from core.lighting import Lighting
+from core.lod import LodConfig
+from core.params import SliceParams
+from core.patch import generate_patch
+from render.binding import DocumentBinding
+from render.frame import FramePipeline
+
+SCENE = get_scene("meadow")
+
+
+def document():
+    return dataclasses.replace(SCENE, params=SCENE.params.replace(blade_count=200)).document()
+
+
+def test_attaching_synchronises_every_grass_type_and_the_scene(ctx):
+    doc = document()
+    pipeline = FramePipeline(ctx)
+    binding = DocumentBinding(pipeline, doc)
+    try:
+        assert [k.lod for k in pipeline.grass_types] == [k.lod for k in doc.grass_types]
+        assert [k.density_channel for k in pipeline.grass_types] == [0, 1]
+        assert [k.patch.params for k in pipeline.grass_types] == [k.params for k in doc.grass_types]
+        assert pipeline.terrain is doc.terrain and pipeline.map_textures.maps is doc.maps
+        assert pipeline.lighting == doc.light and pipeline.slice_params == doc.slices
+        assert pipeline.props.count == len(doc.props)
+    finally:
+        binding.detach()
+        pipeline.release()
+
+
+def test_each_change_reaches_the_pipeline_and_asks_for_a_frame(ctx):
+    doc = document()
+    pipeline = FramePipeline(ctx)
+    pipeline.auto_convert = False
+    frames = []
+    binding = DocumentBinding(pipeline, doc, changed=lambda: frames.append(1))
+    try:
+        doc.density = 0.4
+        assert pipeline.geometry.density == 0.4 and len(frames) == 1
+        lod = LodConfig.zones(geometry_end=2.0, volume_end=9.0)
+        doc.set_lod(1, lod)
+        assert pipeline.grass_types[1].lod == lod
+        doc.set_params(0, doc.params(0).replace(blade_count=50))
+        assert pipeline.grass_types[0].patch.params.blade_count == 50
+        doc.light = Lighting(sun_elevation=12.0)
+        assert pipeline.lighting.sun_elevation == 12.0
+        doc.slices = SliceParams(slices=2)
+        assert pipeline.slice_params.slices == 2
+        doc.maps.write("color", 0, 0, np.zeros((4, 4, 4)))  # a stroke, an undo, an import
+        doc.maps.fill("height", 0.5)
+        new = doc.rebuild_terrain()
+        assert pipeline.terrain is new
+        assert len(frames) == 8  # one frame asked for by every change
+        binding.detach()
+        doc.density = 0.9
+        assert pipeline.geometry.density == 0.4 and len(frames) == 8
+    finally:
+        pipeline.release()
+
+
+def test_patches_made_elsewhere_arrive_unless_they_are_stale(ctx):
+    doc = document()
+    pipeline = FramePipeline(ctx)
+    asked = []
+    binding = DocumentBinding(pipeline, doc, request_patch=lambda i, p: asked.append((i, p)))
+    try:
+        assert asked == [(0, doc.params(0)), (1, doc.params(1))]  # nothing made here
+        assert pipeline.grass_types[0].patch is None
+        stale = generate_patch(doc.params(0))
+        doc.set_params(0, doc.params(0).replace(seed=77))
+        assert asked[-1] == (0, doc.params(0))
+        binding.set_patch(0, stale)  # made for parameters the document no longer has
+        assert pipeline.grass_types[0].patch is None
+        fresh = generate_patch(doc.params(0))
+        binding.set_patch(0, fresh)
+        assert pipeline.grass_types[0].patch is fresh
+    finally:
+        binding.detach()
+        pipeline.release()
