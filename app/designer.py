@@ -278,10 +278,10 @@ class DesignerWindow(QMainWindow):
             self.push(commands.set_density(self.document, density))
 
     # -- results -------------------------------------------------------------------------
-    def _on_patch_ready(self, kind: int, patch: GrassPatch) -> None:
-        if kind == 0 and patch.params == self.document.params(0):
+    def _on_patch_ready(self, grass_type: int, patch: GrassPatch) -> None:
+        if grass_type == 0 and patch.params == self.document.params(0):
             self.patch = patch
-        self.viewport.set_patch(kind, patch)
+        self.viewport.set_patch(grass_type, patch)
 
     def _on_busy(self, busy: bool) -> None:
         if busy:

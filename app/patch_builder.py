@@ -14,12 +14,12 @@ class _Done(QObject):
 
 
 class _Generate(QRunnable):
-    def __init__(self, kind: int, request: int, params: PatchParams, done: _Done) -> None:
+    def __init__(self, grass_type: int, request: int, params: PatchParams, done: _Done) -> None:
         super().__init__()
-        self.kind, self.request, self.params, self.done = kind, request, params, done
+        self.grass_type, self.request, self.params, self.done = grass_type, request, params, done
 
     def run(self) -> None:
-        self.done.finished.emit(self.kind, self.request, generate_patch(self.params))
+        self.done.finished.emit(self.grass_type, self.request, generate_patch(self.params))
 
 
 class PatchBuilder(QObject):
@@ -38,16 +38,16 @@ class PatchBuilder(QObject):
         self._count = 0
         self._latest: dict[int, int] = {}
 
-    def request(self, kind: int, params: PatchParams) -> None:
+    def request(self, grass_type: int, params: PatchParams) -> None:
         self._count += 1
-        self._latest[kind] = self._count
+        self._latest[grass_type] = self._count
         self.busy.emit(True)
-        self.pool.start(_Generate(kind, self._count, params, self._done))
+        self.pool.start(_Generate(grass_type, self._count, params, self._done))
 
-    def _on_finished(self, kind: int, request: int, patch: GrassPatch) -> None:
-        if request == self._latest.get(kind):
+    def _on_finished(self, grass_type: int, request: int, patch: GrassPatch) -> None:
+        if request == self._latest.get(grass_type):
             self.busy.emit(False)
-            self.ready.emit(kind, patch)
+            self.ready.emit(grass_type, patch)
 
     def wait(self) -> None:
         self.pool.waitForDone()

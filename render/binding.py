@@ -52,14 +52,14 @@ class DocumentBinding:
     def _fully_synchronize(self) -> None:
         d, p = self.document, self.pipeline
         p.set_slice_params(d.slices)
-        p.set_grass_types([(kind.lod, kind.channel) for kind in d.grass_types])
+        p.set_grass_types([(grass.lod, grass.channel) for grass in d.grass_types])
         p.set_terrain(d.terrain)
         p.set_design_maps(d.maps)
         p.set_props(d.prop_boxes())
         p.lighting = d.light
         p.set_density(d.density)
-        for index, kind in enumerate(d.grass_types):
-            self._patch_for(index, kind.params)
+        for index, grass in enumerate(d.grass_types):
+            self._patch_for(index, grass.params)
 
     def _patch_for(self, index: int, params: PatchParams) -> None:
         if self._request is None:

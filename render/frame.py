@@ -95,15 +95,15 @@ class FramePipeline:
     def set_grass_types(self, types: list[tuple[LodConfig, int]]) -> None:
         """One renderer set per grass type: (LOD levels, density-map channel); patches follow."""
         density = self.geometry.density
-        for kind in self.grass_types:
-            kind.release()
+        for grass in self.grass_types:
+            grass.release()
         self.grass_types = []
         for lod, channel in types:
-            kind = GrassTypeRenderer(self.ctx, channel)
-            kind.lod = lod
-            kind.set_instances(self._instances)
-            kind.set_density(density)
-            self.grass_types.append(kind)
+            grass = GrassTypeRenderer(self.ctx, channel)
+            grass.lod = lod
+            grass.set_instances(self._instances)
+            grass.set_density(density)
+            self.grass_types.append(grass)
 
     def set_mode(self, mode: str) -> None:
         """How the cells are drawn: a ViewMode (core/view_mode.py)."""
@@ -130,11 +130,11 @@ class FramePipeline:
         self._convert()
 
     def missing(self) -> list[tuple[int, int]]:
-        """(kind, slice count) pairs the current mode needs and nobody converted yet."""
+        """(grass type, slice count) pairs the current mode needs and nobody converted yet."""
         return [
             (i, n)
-            for i, kind in enumerate(self.grass_types)
-            for n in kind.missing_slices(self.mode, self.slice_params)
+            for i, grass in enumerate(self.grass_types)
+            for n in grass.missing_slices(self.mode, self.slice_params)
         ]
 
     @property
@@ -148,17 +148,19 @@ class FramePipeline:
         return self._converter
 
     def set_slice_textures(
-        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams, kind: int = 0
+        self, textures: SliceTextures, patch: GrassPatch, params: SliceParams, grass_type: int = 0
     ) -> None:
         """Slices converted elsewhere (step by step) for `patch` with `params`."""
-        self.grass_types[kind].set_slice_textures(textures, patch, params, self.slice_params.slices)
+        self.grass_types[grass_type].set_slice_textures(
+            textures, patch, params, self.slice_params.slices
+        )
 
     def _convert(self) -> None:
         """Slices of every grass type's patch for the volume and image renderers (4.2)."""
         if not self.auto_convert:
             return
-        for kind in self.grass_types:
-            kind.convert(self.converter, self.mode, self.slice_params)
+        for grass in self.grass_types:
+            grass.convert(self.converter, self.mode, self.slice_params)
 
     def set_props(self, props: np.ndarray) -> None:
         """Boxes standing in the grass (core/props.py), drawn with the ground."""
@@ -206,8 +208,8 @@ class FramePipeline:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.terrain = None
         self._instances = instances
-        for kind in self.grass_types:
-            kind.set_instances(instances)
+        for grass in self.grass_types:
+            grass.set_instances(instances)
         if instances.size:
             lo = instances["origin"]
             hi = lo + instances["size"]
@@ -219,8 +221,8 @@ class FramePipeline:
             )
 
     def set_density(self, density: float) -> None:
-        for kind in self.grass_types:
-            kind.set_density(density)
+        for grass in self.grass_types:
+            grass.set_density(density)
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int], samples: int) -> moderngl.Framebuffer:
@@ -326,31 +328,31 @@ class FramePipeline:
         occupancy = self.occupancy()
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         drawn = []
-        for index, kind in enumerate(self.grass_types):
+        for index, grass in enumerate(self.grass_types):
             tq = time.perf_counter()
             cells = draw_list(
                 mode,
-                kind.lod,
+                grass.lod,
                 camera.eye,
                 self.terrain,
                 self._instances,
                 frustum,
                 self.slice_params.slices,
                 occupancy,
-                kind.density_channel,
+                grass.density_channel,
             )
             tu = time.perf_counter()
             stats.t_q_ms += (tu - tq) * 1000.0
-            batches = kind.upload(cells)
+            batches = grass.upload(cells)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
-            patch = kind.patch
+            patch = grass.patch
             for (representation, slices), (_renderer, count) in batches.items():
                 stats.levels.append((index, representation, slices, count))
                 counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
                 setattr(stats, counter, getattr(stats, counter) + count)
                 if representation == "geometry" and patch is not None:
-                    visible = int(np.count_nonzero(patch.thresholds <= kind.geometry.density))
+                    visible = int(np.count_nonzero(patch.thresholds <= grass.geometry.density))
                     stats.blades += visible * count
                     stats.triangles += visible * count * patch.params.subdivisions * 2
         # The volume blends its partly covered fragments over what is already drawn, so it goes
@@ -367,8 +369,8 @@ class FramePipeline:
         self.overlay.draw(frame)
 
     def release(self) -> None:
-        for kind in self.grass_types:
-            kind.release()
+        for grass in self.grass_types:
+            grass.release()
         self.ground.release()
         self.props.release()
         self.overlay.release()

@@ -39,7 +39,7 @@ class SliceBuilder(QObject):
         self._delivery.ready.connect(self._on_levels, Qt.ConnectionType.QueuedConnection)
         self._generation = 0
         self._steps = None
-        self._target = None  # (patch, SliceParams, kind) being converted
+        self._target = None  # (patch, SliceParams, grass_type) being converted
         self._pending = False  # levels on the worker
 
     @property
@@ -52,13 +52,13 @@ class SliceBuilder(QObject):
         if pipeline is None or not pipeline.needs_slices:
             self._cancel()
             return
-        kind, slices = pipeline.missing()[0]
-        patch = pipeline.grass_types[kind].patch
+        grass_type, slices = pipeline.missing()[0]
+        patch = pipeline.grass_types[grass_type].patch
         params = pipeline.slice_params.replace(slices=slices)
-        if self.busy and self._target[0] is patch and self._target[1:] == (params, kind):
+        if self.busy and self._target[0] is patch and self._target[1:] == (params, grass_type):
             return  # already on it
         self._generation += 1
-        self._target = (patch, params, kind)
+        self._target = (patch, params, grass_type)
         self._pending = False
         self.viewport.makeCurrent()  # the converter's GL objects are made on first use
         try:
