@@ -251,7 +251,7 @@ class FramePipeline:
         """
         ctx = self.ctx
         w, h = size
-        stats = FrameStats(width=w, height=h)
+        stats = FrameStats(width=w, height=h, preview=preview)
         t0 = time.perf_counter()
         if preview:
             dw, dh = max(1, w // PREVIEW_SCALE), max(1, h // PREVIEW_SCALE)

@@ -9,6 +9,7 @@ then once more at full quality.
 from __future__ import annotations
 
 import contextlib
+import time
 from typing import ClassVar
 
 import numpy as np
@@ -234,7 +235,9 @@ class GrassViewport(QOpenGLWidget):
             or self._fly_timer.isActive()
             or self._settle.isActive()
         )
+        taken = time.monotonic()
         stats = self.pipeline.render(self.camera, out, size, measure=True, preview=moving)
+        stats.state_time = taken
         self.last_stats = stats
         self.frame_rendered.emit(stats)
         if self.continuous:
