@@ -38,7 +38,7 @@ def run() -> list[dict]:
         env = dict(os.environ, QT_QPA_PLATFORM="xcb", SWARD_LATENCY_OUT=str(out))
         xvfb = None
         if not env.get("DISPLAY"):
-            display = ":%d" % (90 + os.getpid() % 9)
+            display = f":{90 + os.getpid() % 9}"
             xvfb = subprocess.Popen(
                 ["Xvfb", display, "-screen", "0", "1400x900x24", "-nolisten", "tcp"],
                 stdout=subprocess.DEVNULL,
