@@ -23,13 +23,11 @@ from app.autosave import INTERVAL_MS, Autosave, default_directory
 from app.map_files import MapFileActions
 from app.menus import build_menus, fill_camera_menu
 from app.painting import PaintController
-from app.patch_builder import PatchBuilder
 from app.project_actions import ProjectActions
 from app.qt_dialogs import QtDialogs
 from app.scenes import DEFAULT_SCENE, get_scene
 from core.brush import Stroke
 from core.document import CameraSpec, Document
-from core.patch import GrassPatch
 from widgets.light_panel import LightPanel
 from widgets.lod_panel import LodPanel
 from widgets.map_view import MapView
@@ -64,10 +62,8 @@ class DesignerWindow(QMainWindow):
         self._autosave_timer = QTimer(self, interval=INTERVAL_MS, timeout=self.autosave.save_now)
         self._autosave_timer.start()
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)
-        self.patch: GrassPatch | None = None  # the first grass type's, once made
 
-        self.builder = PatchBuilder(self)
-        self.viewport = GrassViewport(document, self.builder.request)
+        self.viewport = GrassViewport(document)
         self.setCentralWidget(self.viewport)
         self.paint_panel = PaintPanel(document.grass_names)
         self._heights = QTimer(self, singleShot=True, interval=HEIGHTS_SETTLE_MS)
@@ -80,8 +76,7 @@ class DesignerWindow(QMainWindow):
         self.map_files = MapFileActions(
             lambda: self.document, self.paint_panel, self._push_map, self.dialogs
         )
-        self._converting = ""
-        self._last_frame = None
+        self._renderer_status = ""
 
         self.panel = PatchPanel(document)
         self.patch_dock = self._dock("Patch", self.panel, "patch-dock")
@@ -107,7 +102,7 @@ class DesignerWindow(QMainWindow):
         self.patch_dock.raise_()
         self.resizeDocks([self.patch_dock], [380], Qt.Orientation.Horizontal)
 
-        self.status = QLabel("generating patch …")
+        self.status = QLabel("starting the renderer …")
         self.statusBar().addPermanentWidget(self.status, 1)
         self._connect()
         self._bind_document(document)
@@ -128,9 +123,8 @@ class DesignerWindow(QMainWindow):
         )
         self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
         self.profile_panel.recorded.connect(self._save_recording)
-        self.viewport.slices.progress.connect(self._on_conversion)
-        self.builder.ready.connect(self._on_patch_ready)
-        self.builder.busy.connect(self._on_busy)
+        self.viewport.status_changed.connect(self._on_renderer_status)
+        self.viewport.renderer_restarted.connect(self._on_renderer_restarted)
         self.viewport.frame_rendered.connect(self._on_frame)
         for source in (self.viewport, self.map_view):
             source.paint_pressed.connect(self._paint_press)
@@ -168,7 +162,6 @@ class DesignerWindow(QMainWindow):
             self.setWindowTitle(f"Sward — {document.name}[*]")
             self.undo_stack.clear()
             self.overlay.frames.clear()
-            self.patch = None
             self.viewport.set_document(document)
             self.viewport.set_camera(document.camera())
             self.painter.set_document(document)
@@ -278,28 +271,28 @@ class DesignerWindow(QMainWindow):
             self.push(commands.set_density(self.document, density))
 
     # -- results -------------------------------------------------------------------------
-    def _on_patch_ready(self, grass_type: int, patch: GrassPatch) -> None:
-        if grass_type == 0 and patch.params == self.document.params(0):
-            self.patch = patch
-        self.viewport.set_patch(grass_type, patch)
+    def _on_renderer_status(self, text: str) -> None:
+        self._renderer_status = text
+        self._show_status(self.viewport.last_stats)
 
-    def _on_busy(self, busy: bool) -> None:
-        if busy:
-            self.status.setText("generating patch …")
-
-    def _on_conversion(self, done: int, total: int) -> None:
-        self._converting = f"converting slices {done}/{total} · " if total else ""
-        self._on_frame(self.viewport.last_stats)
+    def _on_renderer_restarted(self, text: str) -> None:
+        self.statusBar().showMessage(text, 10000)
 
     def _on_frame(self, stats) -> None:
-        self.lod_panel.show_counts(stats)
-        if stats is not self._last_frame:  # (also called for conversion progress)
-            self._last_frame = stats
+        """A frame arrived: the timings of full-quality frames go to the overlay and the
+        Timings dock; a draft only says so in the status line."""
+        if not stats.preview:
+            self.lod_panel.show_counts(stats)
             self.overlay.add(stats)
             self.profile_panel.add(stats)
+        self._show_status(stats)
+
+    def _show_status(self, stats) -> None:
+        busy = f"{self._renderer_status} · " if self._renderer_status else ""
+        kind = "draft" if stats.preview else "frame"
         self.status.setText(
-            self._converting + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
-            f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · frame {stats.t_a_ms:.0f} ms "
+            busy + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
+            f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {kind} {stats.t_a_ms:.0f} ms "
             f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
             + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
         )
@@ -364,8 +357,7 @@ class DesignerWindow(QMainWindow):
             return
         self._autosave_timer.stop()
         self.autosave.discard()
-        self.builder.wait()
-        self.viewport.release_gl()
+        self.viewport.close_renderer()
         super().closeEvent(event)
 
 

@@ -18,6 +18,8 @@ from PySide6.QtCore import QEvent, QObject, QPoint, QSettings, Qt, QTimer
 from PySide6.QtWidgets import QApplication, QMessageBox
 
 INPUT_EVENTS = {
+    # a key that is a shortcut reaches the window as ShortcutOverride, not as KeyPress
+    QEvent.Type.ShortcutOverride: "key",
     QEvent.Type.KeyPress: "key",
     QEvent.Type.KeyRelease: "key-release",
     QEvent.Type.MouseButtonPress: "press",
@@ -110,6 +112,9 @@ class Driver(threading.Thread):
     def _script(self) -> None:
         p = self.places
         cx, cy = p["viewport_centre"]
+        # a click on the status line gives the window the keyboard (no window manager here)
+        xdo("mousemove", *map(str, p["status_line"]), "click", "1")
+        xdo("mousemove", str(cx), str(cy))
         time.sleep(1.0)
         for name in ("technique colours on", "technique colours off"):
             self.mark(name, "key")
@@ -162,7 +167,10 @@ def places(window) -> dict:
     rect = tree.visualItemRect(item)
     value_x = tree.header().sectionPosition(1) + 30
     blade = tree.viewport().mapToGlobal(QPoint(value_x, rect.center().y()))
+    status = window.statusBar()
+    status_at = status.mapToGlobal(status.rect().center())
     return {
+        "status_line": (status_at.x(), status_at.y()),
         "viewport_centre": (centre.x(), centre.y()),
         "file_menu": (file_at.x(), file_at.y()),
         "blade_count": (blade.x(), blade.y()),
@@ -220,6 +228,11 @@ def main() -> int:
         time.sleep(0.005)
         if time.monotonic() - start > FIRST_FRAME_S:
             raise SystemExit("latency session: no full frame within the time limit")
+    window.activateWindow()  # keys go to the window with the input focus
+    focused = time.monotonic()
+    while not window.isActiveWindow() and time.monotonic() - focused < 10.0:
+        app.processEvents()
+        time.sleep(0.01)
     window.profile_panel.continuous_box.setChecked(True)
     driver = Driver(places(window))
     probe.start()

@@ -86,7 +86,7 @@ def _light_from(data: dict, fog_distance: float) -> Lighting:
     if unknown:
         raise ValueError(f"unknown light setting {sorted(unknown)[0]!r}")
     values: dict[str, Any] = {
-        k: tuple(v) if isinstance(v, list) else float(v) for k, v in data.items()
+        k: tuple(v) if isinstance(v, list | tuple) else float(v) for k, v in data.items()
     }
     return Lighting(**values, fog_distance=fog_distance)
 

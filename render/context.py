@@ -25,11 +25,6 @@ def standalone() -> moderngl.Context:
         ) from exc
 
 
-def wrap_current() -> moderngl.Context:
-    """The GL context current on this thread (e.g. a QOpenGLWidget's in initializeGL)."""
-    return moderngl.create_context(require=330)
-
-
 def describe(ctx: moderngl.Context) -> str:
     info = ctx.info
     return f"{info['GL_RENDERER']} / {info['GL_VERSION']} (max samples {ctx.max_samples})"

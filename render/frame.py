@@ -9,6 +9,7 @@ timed as a whole.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 import moderngl
 import numpy as np
@@ -38,6 +39,10 @@ from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
+
+
+class FrameAborted(Exception):
+    """A frame given up before it was finished (FramePipeline.render's `abort`)."""
 
 
 class FramePipeline:
@@ -71,7 +76,8 @@ class FramePipeline:
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
-        self.present = Presenter(ctx)  # half-resolution preview frames, scaled up
+        self.present = Presenter(ctx)
+        self._abort: Callable[[], bool] | None = None  # half-resolution preview frames, scaled up
 
     # -- the first grass type, as the designer and the tests reach it -------------------------
     @property
@@ -242,13 +248,16 @@ class FramePipeline:
         size: tuple[int, int],
         measure: bool = False,
         preview: bool = False,
+        abort: Callable[[], bool] | None = None,
     ) -> FrameStats:
         """Draw one frame into `out` (size w × h) and return its statistics.
 
         `preview` draws at half the resolution without multisampling (no alpha-to-coverage,
-        harder blade edges) and scales the frame up: several times faster on llvmpipe, for the
-        viewport while the camera or the brush moves.
+        harder blade edges) and scales the frame up: several times faster on llvmpipe.
+        `abort` is asked before each pass; when it says yes the frame is dropped (FrameAborted):
+        the render process stops a frame that newer input has made stale.
         """
+        self._abort = abort
         ctx = self.ctx
         w, h = size
         stats = FrameStats(width=w, height=h, preview=preview)
@@ -363,6 +372,8 @@ class FramePipeline:
             passes, key=lambda p: (order[p[0][0]], -p[0][1])
         ):
             if count:
+                if self._abort is not None and self._abort():
+                    raise FrameAborted
                 key = {"geometry": "t_g_ms", "volume": "t_v_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)

@@ -1,42 +1,27 @@
-"""The live viewport: a QOpenGLWidget that drives the moderngl frame pipeline.
+"""The live viewport: shows the frames the render processes draw (render/render_client.py) and
+turns mouse and keys into camera moves and brush strokes. No GL on the window's thread: every
+change asks for a frame, the draft process answers first with a cheap one, the full-quality
+process follows, and the newest frame is painted.
 
 Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
-W A S D move and Q E sink and rise. Frames are drawn on demand (after an edit or a camera move);
-while the camera or the brush moves they are drawn at half resolution without MSAA (preview),
-then once more at full quality.
+W A S D move and Q E sink and rise.
 """
 
 from __future__ import annotations
 
-import contextlib
-import time
 from typing import ClassVar
 
 import numpy as np
-from PySide6.QtCore import QPoint, Qt, QTimer, Signal
-from PySide6.QtGui import QSurfaceFormat
-from PySide6.QtOpenGLWidgets import QOpenGLWidget
+from PySide6.QtCore import QEventLoop, QPoint, QSocketNotifier, Qt, QTimer, Signal
+from PySide6.QtGui import QColor, QImage, QPainter
+from PySide6.QtWidgets import QWidget
 
 from core.camera import Camera
 from core.document import Document
-from core.patch import GrassPatch
 from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, zone_rings
 from core.stats import FrameStats
 from core.view_mode import ViewMode
-from render import context
-from render.binding import DocumentBinding, PatchRequest
-from render.context import release_framebuffer
-from render.frame import FramePipeline
-from widgets.slice_builder import SliceBuilder
-
-
-def gl_format() -> QSurfaceFormat:
-    fmt = QSurfaceFormat()
-    fmt.setVersion(3, 3)
-    fmt.setProfile(QSurfaceFormat.OpenGLContextProfile.CoreProfile)
-    fmt.setDepthBufferSize(24)
-    return fmt
-
+from render.render_client import Frame, RenderClient
 
 # LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
 ZONE_COLORS = {
@@ -45,11 +30,14 @@ ZONE_COLORS = {
     "image": (0.3, 0.5, 1.0, 0.95),
 }
 BRUSH_COLOR = (1.0, 1.0, 1.0, 0.9)
+IMAGE_TIMEOUT_S = 600.0
 
 
-class GrassViewport(QOpenGLWidget):
-    frame_rendered = Signal(object)  # FrameStats
+class GrassViewport(QWidget):
+    frame_rendered = Signal(object)  # FrameStats of each frame shown (drafts: preview=True)
     camera_changed = Signal()
+    status_changed = Signal(str)  # what the renderer is doing ("" when it is done)
+    renderer_restarted = Signal(str)  # what happened to a render process that died
     # painting (tool "paint"): map texel (column, row) under the cursor, keyboard modifiers
     paint_pressed = Signal(float, float, object)
     paint_moved = Signal(float, float)
@@ -59,82 +47,64 @@ class GrassViewport(QOpenGLWidget):
         {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
     )
 
-    def __init__(
-        self, document: Document, request_patch: PatchRequest | None = None, parent=None
-    ) -> None:
-        """`request_patch(index, params)` asks for a grass type's patch to be made off this
-        thread; it comes back through `set_patch`."""
+    def __init__(self, document: Document, parent=None) -> None:
         super().__init__(parent)
-        self.setFormat(gl_format())
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
         self.setMinimumSize(320, 240)
+        self.setAttribute(Qt.WidgetAttribute.WA_OpaquePaintEvent)
         self.document = document
         self.camera = document.camera()
-        self._request_patch = request_patch
-        self.ctx = None
-        self.pipeline: FramePipeline | None = None
-        self.binding: DocumentBinding | None = None
         self._mode = ViewMode.LOD
-        self._view = "shaded"
-        self.slices = SliceBuilder(self)
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
         self.fly_mode = False
         self._held: set[int] = set()
-        self._fly_timer = QTimer(self)
-        self._fly_timer.setInterval(30)
+        self._fly_timer = QTimer(self, interval=30)
         self._fly_timer.timeout.connect(self._fly_step)
         self.last_stats = FrameStats()
-        self.continuous = False  # draw frame after frame (profiling)
-        self.max_image_size = 0  # largest image side render_image can draw (after initializeGL)
+        self.continuous = False
         self.tool = "camera"  # camera | paint
         self.brush_size = 24.0  # texels, for the outline
         self.show_zones = False  # LOD zone rings on the ground
         self._painting = False
         self._hover: tuple[float, float] | None = None  # world x, z under the cursor
-        self._settle = QTimer(self)  # full-quality frame once the cursor rests
-        self._settle.setSingleShot(True)
-        self._settle.setInterval(300)
-        self._settle.timeout.connect(self.update)
+        # frames: `version` counts the states asked for; a frame shows the newest state seen
+        self.version = 0
+        self.shown = (0, True)  # (version, preview) of the frame on screen
+        self._image: QImage | None = None
+        self._images: dict[int, Frame] = {}  # screenshots waited for, by token
+        self._token = 0  # screenshots and questions to the renderer
+        self._pending = False
+        self.renderer = RenderClient(self._on_frame, self.status_changed.emit, self._on_restart)
+        self._notifiers: list[QSocketNotifier] = []
+        self._watch()
+        self.renderer.attach(document, self.request_frame)
+        self.renderer.set_view_state("mode", self._mode)
+        self.request_frame()
 
-    # -- the document (render/binding.py keeps the pipeline in step with it) ---------------
+    def _watch(self) -> None:
+        """Read each render process's messages when its pipe has some (no polling)."""
+        for notifier in self._notifiers:
+            notifier.setEnabled(False)
+            notifier.deleteLater()
+        self._notifiers = []
+        for role, conn in self.renderer.connections().items():
+            notifier = QSocketNotifier(conn.fileno(), QSocketNotifier.Type.Read, self)
+            notifier.activated.connect(lambda *_, r=role: self.renderer.receive(r))
+            self._notifiers.append(notifier)
+
+    # -- the document and the view -------------------------------------------------------------
     def set_document(self, document: Document) -> None:
-        """Show another project; its grass, maps and terrain reach the pipeline through one
-        new binding (at once, or in initializeGL if the GL context does not exist yet)."""
+        """Show another project: the render processes get it whole."""
         self.document = document
-        if self.pipeline is None:
-            return
-        self.binding.detach()
-        self.binding = DocumentBinding(
-            self.pipeline, document, self._request_patch, self._current, self._document_changed
-        )
-        self._document_changed()
-
-    def set_patch(self, index: int, patch: GrassPatch) -> None:
-        """A patch made off the window's thread for grass type `index` (stale ones are
-        dropped by the binding); before the GL context exists it is asked for again."""
-        if self.binding is not None:
-            self.binding.set_patch(index, patch)
-
-    @contextlib.contextmanager
-    def _current(self):
-        self.makeCurrent()
-        try:
-            yield
-        finally:
-            self.doneCurrent()
-
-    def _document_changed(self) -> None:
-        self.slices.schedule()  # a new patch, slice count or volume level may need slices
-        self.update()
+        self.renderer.attach(document, self.request_frame)
+        self.request_frame()
 
     def set_mode(self, mode: str) -> None:
         """A ViewMode: lod | geometry | volume | image | compare."""
         self._mode = ViewMode.parse(mode)
-        if self.pipeline is not None:
-            with self._current():
-                self.pipeline.set_mode(self._mode)
-        self._document_changed()
+        self.renderer.set_view_state("mode", self._mode)
+        self.request_frame()
 
     @property
     def mode(self) -> ViewMode:
@@ -142,17 +112,134 @@ class GrassViewport(QOpenGLWidget):
 
     def set_view(self, view: str) -> None:
         """shaded | techniques."""
-        self._view = view
-        if self.pipeline is not None:
-            self.pipeline.view = view
-        self.update()
+        self.renderer.set_view_state("view", view)
+        self.request_frame()
 
     def set_camera(self, camera: Camera) -> None:
         self.camera = camera
         self.camera_changed.emit()
-        self.update()
+        self.request_frame()
 
-    # -- painting ----------------------------------------------------------------------------
+    def set_continuous(self, on: bool) -> None:
+        """Full frames one after another (profiling)."""
+        self.continuous = on
+        self.renderer.set_view_state("continuous", on)
+        self.request_frame()
+
+    @property
+    def max_image_size(self) -> int:
+        return self.renderer.max_image_size
+
+    # -- frames --------------------------------------------------------------------------------
+    def request_frame(self) -> None:
+        """Something changed: ask for a frame of the new state (once per event-loop turn)."""
+        self.version += 1
+        if not self._pending:
+            self._pending = True
+            QTimer.singleShot(0, self._send_request)
+
+    def _size(self) -> tuple[int, int]:
+        ratio = self.devicePixelRatio()
+        return max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio))
+
+    def _send_request(self) -> None:
+        self._pending = False
+        if self.show_zones:
+            rings = zone_rings(self.document.terrain, self.camera.eye, self.document.lod(0).levels)
+            lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
+            self.renderer.set_view_state("overlay", "zones", lines)
+        self.renderer.request(self.version, self.camera, self._size())
+
+    def _on_frame(self, frame: Frame) -> None:
+        if frame.kind == "image":
+            self._images[frame.version] = frame
+            return
+        key = (frame.version, frame.stats.preview)
+        if frame.version < self.shown[0] or (key[0] == self.shown[0] and key[1] > self.shown[1]):
+            return  # older than what is on screen, or a draft of a state shown in full
+        self.shown = key
+        h, w = frame.image.shape[:2]
+        self._image = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
+        self.last_stats = frame.stats
+        self.update()
+        self.frame_rendered.emit(frame.stats)
+
+    def _on_restart(self, role: str, why: str) -> None:
+        self._watch()
+        self.renderer_restarted.emit(f"the {role} renderer stopped ({why}); started a new one")
+
+    @property
+    def settling(self) -> bool:
+        """True until a full-quality frame of the newest state is on screen."""
+        return self.shown != (self.version, False)
+
+    def frame_image(self) -> np.ndarray:
+        """The frame on screen as (h, w, 3) uint8 (drafts at their own, smaller size)."""
+        if self._image is None:
+            return np.zeros((1, 1, 3), np.uint8)
+        image = self._image.convertToFormat(QImage.Format.Format_RGB888)
+        w, h = image.width(), image.height()
+        data = np.frombuffer(image.constBits(), np.uint8, count=image.sizeInBytes())
+        return data.reshape(h, image.bytesPerLine())[:, : w * 3].reshape(h, w, 3).copy()
+
+    def render_image(self, size: tuple[int, int]) -> np.ndarray:
+        """The current view drawn at full quality at any size (screenshots larger than the
+        window): (h, w, 3) uint8, top row first, without the brush outline and zone rings.
+        The window keeps handling events while it waits."""
+        self.renderer.set_view_state("overlay", "brush", [])
+        self.renderer.set_view_state("overlay", "zones", [])
+        self._token -= 1  # negative: never taken for a view's version
+        version = self._token
+        self.renderer.request(version, self.camera, size, kind="image")
+        loop = QEventLoop()
+        timer = QTimer(interval=20, timeout=lambda: version in self._images and loop.quit())
+        timer.start()
+        QTimer.singleShot(int(IMAGE_TIMEOUT_S * 1000), loop.quit)
+        loop.exec()
+        timer.stop()
+        self._update_outline()
+        frame = self._images.pop(version, None)
+        if frame is None:
+            raise RuntimeError("the renderer did not draw the image in time")
+        return np.ascontiguousarray(frame.image[..., :3])
+
+    def renderer_facts(self, timeout_s: float = 60.0) -> dict:
+        """What the full-quality renderer holds (slice counts, terrain, light, patches), once it
+        has handled every change sent before this call."""
+        self._token -= 1
+        token = self._token
+        self.renderer.query(token)
+        loop = QEventLoop()
+        found: dict = {}
+
+        def check() -> None:
+            facts = self.renderer.facts(token)
+            if facts is not None:
+                found.update(facts)
+                loop.quit()
+
+        timer = QTimer(interval=20, timeout=check)
+        timer.start()
+        QTimer.singleShot(int(timeout_s * 1000), loop.quit)
+        loop.exec()
+        timer.stop()
+        return found
+
+    def paintEvent(self, _event) -> None:
+        painter = QPainter(self)
+        if self._image is None:
+            painter.fillRect(self.rect(), QColor(158, 191, 230))
+            painter.drawText(self.rect(), Qt.AlignmentFlag.AlignCenter, "starting the renderer …")
+        else:
+            painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform)
+            painter.drawImage(self.rect(), self._image)
+        painter.end()
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self.request_frame()
+
+    # -- painting ------------------------------------------------------------------------------
     def set_tool(self, tool: str) -> None:
         """camera: left drag orbits; paint: left drag paints, right drag orbits, middle pans."""
         self.tool = tool
@@ -170,9 +257,9 @@ class GrassViewport(QOpenGLWidget):
 
     def set_show_zones(self, on: bool) -> None:
         self.show_zones = on
-        if not on and self.pipeline is not None:
-            self.pipeline.overlay.set_lines("zones", [])
-        self.update()
+        if not on:
+            self.renderer.set_view_state("overlay", "zones", [])
+        self.request_frame()
 
     def ground_at(self, x: float, y: float) -> np.ndarray | None:
         """The world point of the ground under widget position (x, y), or None."""
@@ -197,83 +284,10 @@ class GrassViewport(QOpenGLWidget):
             terrain = self.document.terrain
             radius = 0.5 * self.brush_size * terrain.columns / self.document.maps.size[0]
             lines.append((ground_circle(terrain, *self._hover, radius), BRUSH_COLOR))
-        if self.pipeline is not None:
-            self.pipeline.overlay.set_lines("brush", lines)
-        self.update()
+        self.renderer.set_view_state("overlay", "brush", lines)
+        self.request_frame()
 
-    # -- GL ----------------------------------------------------------------------------------
-    def initializeGL(self) -> None:
-        self.ctx = context.wrap_current()
-        # asked here, with this widget's context current (ctx.info asks whichever one is)
-        self.max_image_size = int(self.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
-        pipeline = FramePipeline(self.ctx)
-        pipeline.auto_convert = False  # self.slices converts step by step
-        pipeline.view = self._view
-        pipeline.set_mode(self._mode)
-        # the context is current here already: no makeCurrent around the first synchronisation
-        self.binding = DocumentBinding(pipeline, self.document, self._request_patch)
-        self.binding.current = self._current
-        self.binding.changed = self._document_changed
-        self.pipeline = pipeline
-        QTimer.singleShot(0, self.slices.schedule)
-
-    def paintGL(self) -> None:
-        if self.pipeline is None or self.ctx is None:
-            return
-        ratio = self.devicePixelRatio()
-        size = (max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio)))
-        out = self.ctx.detect_framebuffer(self.defaultFramebufferObject())
-        if self.show_zones:
-            levels = self.document.lod(0).levels
-            rings = zone_rings(self.document.terrain, self.camera.eye, levels)
-            self.pipeline.overlay.set_lines(
-                "zones", [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
-            )
-        moving = (
-            self._drag is not None
-            or self._painting
-            or self._fly_timer.isActive()
-            or self._settle.isActive()
-        )
-        taken = time.monotonic()
-        stats = self.pipeline.render(self.camera, out, size, measure=True, preview=moving)
-        stats.state_time = taken
-        self.last_stats = stats
-        self.frame_rendered.emit(stats)
-        if self.continuous:
-            QTimer.singleShot(0, self.update)
-
-    def render_image(self, size: tuple[int, int]) -> np.ndarray:
-        """The current view drawn at full quality at any size (screenshots larger than the
-        window): (h, w, 3) uint8, top row first, without the brush outline and zone rings."""
-        if self.pipeline is None or self.ctx is None:
-            raise RuntimeError("the viewport has no GL context yet")
-        self.makeCurrent()
-        overlay = self.pipeline.overlay
-        groups = dict(overlay.groups)
-        try:
-            for name in groups:
-                overlay.set_lines(name, [])
-            out = self.ctx.framebuffer(self.ctx.renderbuffer(size, 4))
-            self.pipeline.render(self.camera, out, size)
-            image = context.read_rgb(out, size)
-            release_framebuffer(out, *out.color_attachments)
-        finally:
-            for name, lines in groups.items():
-                overlay.set_lines(name, lines)
-            self.doneCurrent()
-        return image
-
-    @property
-    def settling(self) -> bool:
-        """True while frames are previews because the cursor just moved."""
-        return self._settle.isActive()
-
-    def set_continuous(self, on: bool) -> None:
-        self.continuous = on
-        self.update()
-
-    # -- mouse and keys ----------------------------------------------------------------------
+    # -- mouse and keys ------------------------------------------------------------------------
     def mousePressEvent(self, event) -> None:
         if self.tool == "paint" and event.button() == Qt.MouseButton.LeftButton:
             pos = event.position()
@@ -292,7 +306,6 @@ class GrassViewport(QOpenGLWidget):
             self.paint_released.emit()
         self._drag = None
         self._button = Qt.MouseButton.NoButton
-        self.update()  # the full-quality frame after a preview drag
 
     def mouseMoveEvent(self, event) -> None:
         if self.tool == "paint" and self._drag is None:
@@ -300,7 +313,6 @@ class GrassViewport(QOpenGLWidget):
             texel = self.texel_at(pos.x(), pos.y())
             if texel is not None and self._painting:
                 self.paint_moved.emit(texel[0], texel[1])
-            self._settle.start()
             self._update_outline()
             return
         if self._drag is None:
@@ -315,13 +327,13 @@ class GrassViewport(QOpenGLWidget):
             scale = 1.0 / max(self.height(), 1)
             self.camera.pan(-dx * scale, dy * scale)
         self.camera_changed.emit()
-        self.update()
+        self.request_frame()
 
     def wheelEvent(self, event) -> None:
         steps = event.angleDelta().y() / 120.0
         self.camera.zoom(0.88**steps)
         self.camera_changed.emit()
-        self.update()
+        self.request_frame()
 
     def keyPressEvent(self, event) -> None:
         key = event.key()
@@ -342,7 +354,6 @@ class GrassViewport(QOpenGLWidget):
             self._held.discard(event.key())
         if not self._held and self._fly_timer.isActive():
             self._fly_timer.stop()
-            self.update()
         super().keyReleaseEvent(event)
 
     def _fly_step(self) -> None:
@@ -354,13 +365,10 @@ class GrassViewport(QOpenGLWidget):
         if forward or strafe or rise:
             self.camera.fly(forward * speed, strafe * speed, rise * speed)
             self.camera_changed.emit()
-            self.update()
+            self.request_frame()
 
-    def release_gl(self) -> None:
-        self.slices.wait()
-        if self.pipeline is not None:
-            self.binding.detach()
-            self.binding = None
-            with self._current():
-                self.pipeline.release()
-            self.pipeline = None
+    def close_renderer(self) -> None:
+        """Stop the render processes (the window closes)."""
+        for notifier in self._notifiers:
+            notifier.setEnabled(False)
+        self.renderer.close()

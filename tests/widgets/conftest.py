@@ -1,5 +1,7 @@
 """A designer window under Xvfb for the widget tests, and helpers to read its image."""
 
+import time
+
 import numpy as np
 import pytest
 from PySide6.QtCore import QSettings
@@ -69,26 +71,30 @@ def window(qtbot, tmp_path, monkeypatch):
     win.resize(1300, 640)
     win.show()
     qtbot.waitExposed(win)
-    qtbot.waitUntil(lambda: win.patch is not None, timeout=20000)
+    wait_full(win)
     yield win
     win.close()
 
 
+def wait_full(win, timeout_s: float = 120.0) -> None:
+    """Until a full-quality frame of the newest state is on screen (the render processes
+    draw a draft first)."""
+    from PySide6.QtWidgets import QApplication
+
+    start = time.monotonic()
+    while win.viewport.settling:
+        QApplication.processEvents()
+        time.sleep(0.005)
+        if time.monotonic() - start > timeout_s:
+            raise AssertionError("no full-quality frame of the newest state in time")
+
+
 def grab(win) -> np.ndarray:
-    img = win.viewport.grabFramebuffer().convertToFormat(
-        win.viewport.grabFramebuffer().Format.Format_RGB888
-    )
-    ptr = img.constBits()
-    arr = np.frombuffer(ptr, dtype=np.uint8, count=img.sizeInBytes())
-    return (
-        arr.reshape(img.height(), img.bytesPerLine())[:, : img.width() * 3]
-        .reshape(img.height(), img.width(), 3)
-        .copy()
-    )
+    """The full-quality frame of the newest state, (h, w, 3) uint8."""
+    wait_full(win)
+    return win.viewport.frame_image()
 
 
 def wait_for_slices(window, qtbot):
-    qtbot.waitUntil(
-        lambda: not window.viewport.slices.busy and not window.viewport.pipeline.needs_slices,
-        timeout=30000,
-    )
+    """The full-quality renderer converts slices before it draws: its frame has them all."""
+    wait_full(window)

@@ -1,0 +1,307 @@
+"""The window's side of the render processes (render/render_server.py): starts them, sends them
+the document and every change of it, asks for frames and takes them back. Qt-free: the viewport
+watches `connections()` with its event loop and calls `receive` when one is readable.
+
+The design-map stack reaches the processes through a memory-mapped file: the whole stack when a
+document is opened, then only the rectangles edits changed (merged until the next frame)."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from multiprocessing.connection import Connection
+
+import numpy as np
+
+from core.design_maps import LAYER_INDEX, LAYERS
+from core.document import Document
+from core.project_file import document_data
+from core.stats import FrameStats
+from render.design_maps import union
+from render.render_server import DRAFT, FULL, MappedArray
+
+ROLES = (DRAFT, FULL)
+
+
+def _shared_folder() -> str:
+    return "/dev/shm" if os.path.isdir("/dev/shm") else tempfile.gettempdir()
+
+
+def _new_file(nbytes: int, prefix: str) -> str:
+    fd, path = tempfile.mkstemp(prefix=prefix, dir=_shared_folder())
+    os.ftruncate(fd, max(nbytes, 1))
+    os.close(fd)
+    return path
+
+
+@dataclass
+class Frame:
+    version: int
+    kind: str  # view | image
+    image: np.ndarray  # (h, w, 4) uint8, top row first
+    stats: FrameStats
+
+
+@dataclass
+class _Process:
+    role: str
+    process: subprocess.Popen
+    conn: Connection
+    pid: int = 0
+    max_image_size: int = 0
+    out: MappedArray | None = None
+    out_capacity: int = 0
+    facts: dict = field(default_factory=dict)
+    # frame files outgrown by a larger screenshot: a request in flight may still name one
+    old_outs: list = field(default_factory=list)
+
+    def release_files(self) -> None:
+        for out in [*self.old_outs, *([self.out] if self.out is not None else [])]:
+            out.close()
+            with contextlib.suppress(OSError):
+                os.unlink(out.path)
+        self.old_outs, self.out = [], None
+
+
+class RenderClient:
+    def __init__(
+        self,
+        on_frame: Callable[[Frame], None],
+        on_status: Callable[[str], None] = lambda text: None,
+        on_restart: Callable[[str, str], None] = lambda role, why: None,
+    ) -> None:
+        self.on_frame = on_frame
+        self.on_status = on_status
+        self.on_restart = on_restart  # (role, what happened): a process died and was restarted
+        self._stack: MappedArray | None = None
+        self._document: Document | None = None
+        self._dirty: dict[str, tuple[int, int, int, int]] = {}
+        self._replay: dict[str, tuple] = {}  # view state a restarted process needs again
+        self._last_request: dict | None = None
+        self._handlers: dict = {}
+        self._changed: Callable[[], None] = lambda: None
+        self._closed = False
+        self.processes: dict[str, _Process] = {role: self._start(role) for role in ROLES}
+
+    # -- processes ---------------------------------------------------------------------------
+    def _start(self, role: str) -> _Process:
+        """A new process running render/render_server.py, talking over a socket pair (a
+        module run with -m: nothing of the window's program is imported again there)."""
+        mine, theirs = socket.socketpair()
+        process = subprocess.Popen(
+            [sys.executable, "-m", "render.render_server", role, str(theirs.fileno())],
+            pass_fds=(theirs.fileno(),),
+        )
+        theirs.close()
+        return _Process(role, process, Connection(mine.detach()))
+
+    def connections(self) -> dict[str, object]:
+        return {role: p.conn for role, p in self.processes.items()}
+
+    @property
+    def pids(self) -> dict[str, int]:
+        return {role: p.process.pid for role, p in self.processes.items()}
+
+    @property
+    def max_image_size(self) -> int:
+        return self.processes[FULL].max_image_size
+
+    def _send(self, message: tuple, roles=ROLES) -> None:
+        if self._closed:
+            return
+        for role in roles:
+            try:
+                self.processes[role].conn.send(message)
+            except (BrokenPipeError, OSError):
+                self._restart(role)
+
+    def _restart(self, role: str) -> None:
+        old = self.processes[role]
+        with contextlib.suppress(OSError):
+            old.conn.close()
+        if old.process.poll() is None:
+            old.process.kill()
+        code = old.process.wait(timeout=10)
+        why = f"killed by signal {-code}" if code is not None and code < 0 else f"exit {code}"
+        old.release_files()
+        self.processes[role] = self._start(role)
+        if self._document is not None:
+            self._open_in(role)
+        for message in self._replay.values():
+            self._send(message, (role,))
+        if self._last_request is not None:
+            self._request_from(role, self._last_request)
+        self.on_restart(role, why)
+
+    def receive(self, role: str) -> None:
+        """Handle what one process sent (call when its connection is readable)."""
+        if self._closed:
+            return
+        p = self.processes[role]
+        try:
+            while p.conn.poll():
+                self._handle(p, p.conn.recv())
+        except (EOFError, OSError):
+            self._restart(role)
+
+    def _handle(self, p: _Process, message: tuple) -> None:
+        kind, *args = message
+        if kind == "hello":
+            p.pid, p.max_image_size, _gl = args
+        elif kind == "frame":
+            version, frame_kind, (w, h), stats = args
+            image = p.out.array[: w * h * 4].reshape(h, w, 4).copy()
+            p.conn.send(("ack",))
+            self.on_frame(Frame(version, frame_kind, image, stats))
+        elif kind == "status":
+            self.on_status(args[0])
+        elif kind == "facts":
+            p.facts[args[0]] = args[1]
+        elif kind == "error":
+            self.on_status(f"the {p.role} renderer failed: {args[0].strip().splitlines()[-1]}")
+
+    # -- the document ------------------------------------------------------------------------
+    def attach(self, document: Document, changed: Callable[[], None]) -> None:
+        """Send `document` whole, then follow its events; `changed()` after each change."""
+        self.detach()
+        self.open(document)
+        self._changed = changed
+        self._handlers = {
+            "params": lambda i, p: self._forward("params", i, p),
+            "lod": lambda i, c: self._forward("lod", i, c),
+            "density": lambda v: self._forward("set", "density", v),
+            "slices": lambda v: self._forward("set", "slices", v),
+            "light": lambda v: self._forward("set", "light", v),
+            "terrain": lambda _t: self._forward("terrain"),
+        }
+        for name, handler in self._handlers.items():
+            getattr(document.events, name).connect(handler)
+        document.maps.changed.connect(self._on_maps_changed)
+
+    def detach(self) -> None:
+        if self._document is None or not self._handlers:
+            return
+        for name, handler in self._handlers.items():
+            getattr(self._document.events, name).disconnect(handler)
+        self._document.maps.changed.disconnect(self._on_maps_changed)
+        self._handlers = {}
+
+    def _forward(self, kind: str, *args) -> None:
+        self.change(kind, *args)
+        self._changed()
+
+    def _on_maps_changed(self, name: str, rect) -> None:
+        self.maps_changed(name, rect)
+        self._changed()
+
+    def open(self, document: Document) -> None:
+        """Send a whole document (a new one, or the first)."""
+        if self._stack is not None:
+            self._stack.close()
+            os.unlink(self._stack.path)
+        stack = document.maps.stack
+        path = _new_file(stack.nbytes, "sward-maps-")
+        self._stack = MappedArray(path, stack.shape)
+        self._stack.array[:] = stack
+        self._document = document
+        self._dirty.clear()
+        for role in ROLES:
+            self._open_in(role)
+
+    def _open_in(self, role: str) -> None:
+        self._flush_maps()  # the mapped stack holds every edit before the process reads it
+        shape = self._document.maps.stack.shape
+        # the same plain data a project file holds (JSON), so the replica is built as a load is
+        data = json.loads(json.dumps(document_data(self._document)))
+        self._send(("open", data, self._stack.path, shape), (role,))
+
+    def change(self, kind: str, *args) -> None:
+        """A change of the open document: params, lod, set (density / slices / light),
+        terrain."""
+        self._flush_maps()
+        self._send((kind, *args))
+
+    def maps_changed(self, name: str, rect: tuple[int, int, int, int]) -> None:
+        self._dirty[name] = union(self._dirty.get(name), rect)
+
+    def _flush_maps(self) -> None:
+        if self._stack is None:
+            return
+        stack = self._document.maps.stack
+        for name, (x, y, w, h) in self._dirty.items():
+            i = LAYER_INDEX[name]
+            c = LAYERS[i].channels
+            self._stack.array[i, y : y + h, x : x + w, :c] = stack[i, y : y + h, x : x + w, :c]
+            self._send(("maps", name, (x, y, w, h)))
+        self._dirty.clear()
+
+    # -- view state and frames ---------------------------------------------------------------
+    def set_view_state(self, kind: str, *args) -> None:
+        """mode, view, overlay (group, lines), continuous: kept for a restarted process."""
+        key = kind if kind != "overlay" else f"overlay:{args[0]}"
+        message = (kind, *args)
+        self._replay[key] = message
+        self._send(message)
+
+    def request(self, version: int, camera, size: tuple[int, int], kind: str = "view") -> None:
+        """Ask for a frame of the current state: a draft and a full frame (`view`), or only a
+        full one (`image`: a screenshot of any size)."""
+        self._flush_maps()
+        request = {
+            "version": version,
+            "camera": camera,
+            "size": tuple(size),
+            "kind": kind,
+            "state_time": time.monotonic(),
+        }
+        if kind == "view":
+            self._last_request = request
+        for role in ROLES if kind == "view" else (FULL,):
+            self._request_from(role, request)
+
+    def _request_from(self, role: str, request: dict) -> None:
+        p = self.processes[role]
+        w, h = request["size"]
+        need = w * h * 4
+        if p.out is None or p.out_capacity < need:
+            if p.out is not None:
+                p.old_outs.append(p.out)
+            capacity = max(need, 1920 * 1200 * 4)
+            p.out = MappedArray(_new_file(capacity, f"sward-{role}-"), (capacity,), np.uint8)
+            p.out_capacity = capacity
+        self._send(("frame", dict(request, out_path=p.out.path, out_bytes=p.out_capacity)), (role,))
+
+    def query(self, token: int) -> None:
+        """Ask the full renderer for facts about its pipeline (answered into `facts`)."""
+        self._send(("query", token), (FULL,))
+
+    def facts(self, token: int) -> dict | None:
+        return self.processes[FULL].facts.pop(token, None)
+
+    def close(self) -> None:
+        self.detach()
+        self._closed = True
+        for p in self.processes.values():
+            with contextlib.suppress(BrokenPipeError, OSError):
+                p.conn.send(("quit",))
+        for p in self.processes.values():
+            try:
+                p.process.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                p.process.kill()
+                p.process.wait(timeout=5)
+            with contextlib.suppress(OSError):
+                p.conn.close()
+            p.release_files()
+        if self._stack is not None:
+            self._stack.close()
+            os.unlink(self._stack.path)
+            self._stack = None

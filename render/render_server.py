@@ -1,0 +1,253 @@
+"""The render process: its own standalone EGL context and frame pipeline, running the same
+render/ code as `sward render`, fed the document and its changes over a pipe, drawing the newest
+camera and handing frames back through a memory-mapped file (render/render_client.py starts it).
+
+The designer runs two of these (DESIGN.md: the window's thread never draws GL):
+- `draft`: a cheap frame for every change — a quarter of the resolution, no multisampling,
+  slices made after the first draft that needs them (the draft after a blade edit shows the new
+  blades at once and the new slices one draft later);
+- `full`: full-quality frames at a lower scheduling priority (nice 10), so drafts win the CPU;
+  a full frame that newer input has made stale is abandoned between its passes.
+
+Every message a process has not yet handled is applied before it draws, so requests coalesce:
+only the newest camera is drawn, never the positions in between.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import mmap
+import os
+import traceback
+
+import numpy as np
+
+from core.design_maps import LAYER_INDEX, LAYERS
+from core.project_file import document_from_data
+from core.view_mode import ViewMode
+from render import context
+from render.binding import DocumentBinding
+from render.frame import FrameAborted, FramePipeline
+from render.slices import SliceTextures
+
+DRAFT, FULL = "draft", "full"
+DRAFT_SCALE = 4  # drafts are drawn at 1 / 4 of the width and height
+FULL_NICE = 10
+
+
+class MappedArray:
+    """A numpy array over a file both processes map (in /dev/shm: memory, not disk)."""
+
+    def __init__(self, path: str, shape: tuple[int, ...], dtype=np.float32) -> None:
+        self.path = path
+        nbytes = int(np.prod(shape)) * np.dtype(dtype).itemsize
+        with open(path, "r+b") as file:  # the mapping keeps its own descriptor
+            self._map = mmap.mmap(file.fileno(), nbytes)
+        self.array = np.ndarray(shape, dtype, buffer=self._map)
+
+    def close(self) -> None:
+        del self.array
+        with contextlib.suppress(BufferError):  # a view still held: unmapped when it goes
+            self._map.close()
+
+
+class RenderServer:
+    def __init__(self, conn, role: str) -> None:
+        self.conn = conn
+        self.role = role
+        self.ctx = context.standalone()
+        self.pipeline = FramePipeline(self.ctx, samples=0 if role == DRAFT else 4)
+        self.pipeline.auto_convert = role == FULL
+        self.pipeline.set_mode(ViewMode.LOD)
+        self.document = None
+        self.binding: DocumentBinding | None = None
+        self.stack: MappedArray | None = None
+        self.out: MappedArray | None = None
+        self.request: dict | None = None  # the newest frame asked for
+        self.last: dict | None = None
+        self.continuous = False
+        self.waiting_ack = False
+        self.refine = False  # a draft that lacked slices: convert, then draw it again
+        self._targets: dict[tuple[int, int], object] = {}
+
+    # -- messages ----------------------------------------------------------------------------
+    def handle(self, message: tuple) -> bool:
+        kind, *args = message
+        if kind == "quit":
+            return False
+        handlers = {
+            "open": self._on_open,
+            "params": self._on_params,
+            "lod": self._on_lod,
+            "set": self._on_set,
+            "terrain": self._on_terrain,
+            "maps": self._on_maps,
+            "mode": self._on_mode,
+            "view": self._on_view,
+            "overlay": self._on_overlay,
+            "continuous": self._on_continuous,
+            "frame": self._on_frame,
+            "ack": self._on_ack,
+            "query": self._on_query,
+        }
+        handlers[kind](*args)
+        return True
+
+    def _on_open(self, data: dict, stack_path: str, shape: tuple) -> None:
+        if self.binding is not None:
+            self.binding.detach()
+        if self.stack is not None:
+            self.stack.close()
+        self.stack = MappedArray(stack_path, shape)
+        self.document = document_from_data(data, self.stack.array)
+        self.binding = DocumentBinding(self.pipeline, self.document)
+
+    def _on_params(self, index: int, params) -> None:
+        self.document.set_params(index, params)
+
+    def _on_lod(self, index: int, lod) -> None:
+        self.document.set_lod(index, lod)
+
+    def _on_set(self, name: str, value) -> None:  # density, slices, light
+        setattr(self.document, name, value)
+
+    def _on_terrain(self) -> None:
+        self.document.rebuild_terrain()
+
+    def _on_maps(self, name: str, rect: tuple[int, int, int, int]) -> None:
+        if self.document is None:
+            return  # the document that follows reads the whole stack
+        x, y, w, h = rect
+        i = LAYER_INDEX[name]
+        values = self.stack.array[i, y : y + h, x : x + w, : LAYERS[i].channels]
+        self.document.maps.write(name, x, y, np.array(values))
+
+    def _on_mode(self, mode: str) -> None:
+        self.pipeline.set_mode(mode)
+
+    def _on_view(self, view: str) -> None:
+        self.pipeline.view = view
+
+    def _on_overlay(self, group: str, lines: list) -> None:
+        self.pipeline.overlay.set_lines(group, lines)
+
+    def _on_continuous(self, on: bool) -> None:
+        self.continuous = bool(on) and self.role == FULL
+
+    def _on_frame(self, request: dict) -> None:
+        self.request = request
+
+    def _on_ack(self) -> None:
+        self.waiting_ack = False
+
+    def _on_query(self, token: int) -> None:
+        p = self.pipeline
+        terrain = p.terrain
+        facts = {
+            "role": self.role,
+            "volume_slices": p.volume.slices,
+            "needs_slices": p.needs_slices,
+            "lighting": p.lighting,
+            "patch_params": [g.patch.params if g.patch else None for g in p.grass_types],
+            "height_scale": terrain.height_scale if terrain is not None else 0.0,
+            "terrain_top": float(terrain.cell_max.max()) if terrain is not None else 0.0,
+        }
+        self.conn.send(("facts", token, facts))
+
+    # -- drawing -----------------------------------------------------------------------------
+    def _target(self, size: tuple[int, int]):
+        if size not in self._targets:
+            for old in list(self._targets):
+                context.release_framebuffer(self._targets.pop(old))
+            self._targets[size] = self.ctx.framebuffer(self.ctx.renderbuffer(size, 4))
+        return self._targets[size]
+
+    def draw(self, request: dict) -> None:
+        w, h = request["size"]
+        draft = self.role == DRAFT and request["kind"] == "view"
+        if draft:
+            w, h = max(1, w // DRAFT_SCALE), max(1, h // DRAFT_SCALE)
+        abort = self.conn.poll if self.role == FULL and request["kind"] == "view" else None
+        fbo = self._target((w, h))
+        try:
+            # a draft is timed only as a whole: no ctx.finish() bubbles between its passes
+            stats = self.pipeline.render(request["camera"], fbo, (w, h), not draft, False, abort)
+        except FrameAborted:
+            return
+        stats.preview = draft
+        stats.state_time = request["state_time"]
+        if self.out is None or self.out.path != request["out_path"]:
+            if self.out is not None:
+                self.out.close()
+            self.out = MappedArray(request["out_path"], (request["out_bytes"],), np.uint8)
+        image = context.read_rgb(fbo, (w, h), 4)
+        self.out.array[: image.size] = image.reshape(-1)
+        self.waiting_ack = True
+        self.conn.send(("frame", request["version"], request["kind"], (w, h), stats))
+        if draft and self.pipeline.missing():
+            self.refine = True
+
+    def convert_one(self) -> None:
+        """The draft process makes the slices a draft lacked one set at a time."""
+        p = self.pipeline
+        grass_type, n = p.missing()[0]
+        patch = p.grass_types[grass_type].patch
+        sp = p.slice_params
+        self.conn.send(("status", f"converting slices of grass type {grass_type + 1}"))
+        sliced = p.converter.convert(patch, n, (sp.width, sp.height), sp.top)
+        p.set_slice_textures(
+            SliceTextures.upload(self.ctx, sliced), patch, sp.replace(slices=n), grass_type
+        )
+        if not p.missing():
+            self.refine = False
+            self.conn.send(("status", ""))
+
+    def loop(self) -> None:
+        while True:
+            busy = (self.request is not None or self.refine) and not self.waiting_ack
+            if not busy or self.conn.poll():
+                if not self.handle(self.conn.recv()):
+                    return
+                while self.conn.poll():
+                    if not self.handle(self.conn.recv()):
+                        return
+                continue
+            if self.document is None:
+                self.request = None
+                continue
+            if self.request is not None:
+                request, self.request = self.request, None
+                self.last = request
+                self.draw(request)
+                if self.continuous and request["kind"] == "view":
+                    self.request = request  # frame after frame, the same state
+            elif self.refine:
+                self.convert_one()
+                if self.last is not None and self.request is None:
+                    self.request = self.last
+
+
+def serve(conn, role: str) -> None:
+    """The process's work: answer `conn` until the window quits or goes away."""
+    if role == FULL:
+        os.nice(FULL_NICE)  # before the GL context: llvmpipe's threads inherit it
+    try:
+        server = RenderServer(conn, role)
+        size = int(server.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
+        conn.send(("hello", os.getpid(), size, context.describe(server.ctx)))
+        server.loop()
+    except (EOFError, BrokenPipeError, KeyboardInterrupt):
+        return  # the window went away
+    except Exception:
+        try:
+            conn.send(("error", traceback.format_exc(limit=4)))
+        except (BrokenPipeError, OSError):
+            pass
+        raise
+
+
+if __name__ == "__main__":  # python -m render.render_server ROLE FD (render/render_client.py)
+    import sys
+    from multiprocessing.connection import Connection
+
+    serve(Connection(int(sys.argv[2])), sys.argv[1])
