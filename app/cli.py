@@ -262,8 +262,26 @@ def cmd_gui(_: argparse.Namespace) -> int:
     return run_designer()
 
 
+POINT_OPTIONS = ("--eye", "--target")
+
+
+def _glue_points(argv: list[str]) -> list[str]:
+    """`--eye -30,25,-30` as `--eye=-30,25,-30`: argparse takes a value that starts with a
+    minus (and is not a plain number) for an option of its own."""
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        if argv[i] in POINT_OPTIONS and i + 1 < len(argv) and argv[i + 1].startswith("-"):
+            out.append(f"{argv[i]}={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(argv[i])
+            i += 1
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
+    args = parser().parse_args(_glue_points(sys.argv[1:] if argv is None else argv))
     handler = {
         None: cmd_gui,
         "render": cmd_render,

@@ -144,7 +144,9 @@ class Stroke:
         mode = self.brush.mode
         if mode == "paint":
             return np.broadcast_to(np.asarray(self.brush.value, np.float32), current.shape)
-        if mode == "erase":  # back to the map's default (e.g. full density, no tint)
+        if mode == "erase":  # density: no grass; every other map back to its default
+            if self.layer == "density":  # (no tint, neutral light, flat ground)
+                return np.zeros_like(current)
             default = np.asarray(LAYERS[LAYER_INDEX[self.layer]].default, np.float32)
             default = default[[self.channel]] if self.channel is not None else default
             return np.broadcast_to(default[: current.shape[2]], current.shape)

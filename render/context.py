@@ -1,7 +1,7 @@
 """The one place that makes GL contexts.
 
-Renderers receive a moderngl context and never create one: the viewport wraps Qt's current
-context (`wrap_current`), the command line, tests and benchmarks use `standalone`.
+Renderers receive a moderngl context and never create one: the render processes, the command
+line, tests and benchmarks use `standalone` (the window itself draws no GL).
 """
 
 from __future__ import annotations

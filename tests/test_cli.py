@@ -5,6 +5,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 from PIL import Image
 
@@ -154,3 +155,15 @@ def test_new_writes_a_project_that_render_reads(tmp_path):
     assert r.returncode == 2
     assert "bad.sward" in r.stderr and "not a zip file" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_negative_coordinates_work_as_written(tmp_path):
+    out, st = tmp_path / "hill.png", tmp_path / "hill.json"
+    r = sward(
+        "render", "--scene", "patch-grid", "--eye", "-6,2.5,-6", "--target", "-0.5,0,-0.5",
+        "--size", "96x64", "--out", str(out), "--stats", str(st),
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert json.loads(st.read_text())["camera"] == "custom"
+    with Image.open(out) as image:
+        assert coverage(np.asarray(image.convert("RGB"))) > 0.1  # it looks at the grass

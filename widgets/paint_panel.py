@@ -50,7 +50,8 @@ class PaintPanel(QWidget):
         self.strength_box = QDoubleSpinBox(minimum=0.0, maximum=1.0, singleStep=0.1, value=0.8)
         self.strength_box.setToolTip("- weaker · = stronger")
         form.addRow("Strength", self.strength_box)
-        self.value_box = QDoubleSpinBox(minimum=0.0, maximum=1.0, singleStep=0.05, value=0.0)
+        # paint adds (full density, light, height); Ctrl or the erase mode takes away
+        self.value_box = QDoubleSpinBox(minimum=0.0, maximum=1.0, singleStep=0.05, value=1.0)
         self.value_label = QLabel("Density")
         form.addRow(self.value_label, self.value_box)
         self.color = QColor(235, 200, 40)

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import dataclasses
 
-from pyqtgraph.parametertree import Parameter, ParameterTree
+from pyqtgraph.parametertree import Parameter, ParameterTree, registerParameterType
+from pyqtgraph.parametertree.parameterTypes import NumericParameterItem, SimpleParameter
 from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
@@ -23,6 +24,40 @@ from core.params import (
 
 CUSTOM = "(custom)"
 SIZE_LABELS = {f"{w} × {h}": (w, h) for w, h in SLICE_SIZES}
+
+
+class UnitNumberItem(NumericParameterItem):
+    """A number shown with its unit, typed with or without it ("0.6" or "0.6 patch units").
+    The box has no limits of its own: a value out of range reaches the panel, which refuses it
+    with a message naming the field and its range (a clamped value would hide the mistake)."""
+
+    def makeWidget(self):
+        box = super().makeWidget()
+        unit = box.opts["suffix"].strip()
+        with_unit = box.interpret
+
+        def interpret():
+            text = box.lineEdit().text().strip()
+            if unit and not text.endswith(unit):
+                try:
+                    return float(text.replace(",", "."))
+                except ValueError:
+                    return False
+            return with_unit()
+
+        box.interpret = interpret
+        return box
+
+
+class UnitNumberParameter(SimpleParameter):
+    itemClass = UnitNumberItem
+
+    def _interpretValue(self, v):
+        return float(v)
+
+
+SPEC_NAMES = {f.name for f in dataclasses.fields(PatchParams) if "spec" in f.metadata}
+registerParameterType("unit_float", UnitNumberParameter, override=True)
 
 
 def _slice_children(sp: SliceParams) -> list[dict]:
@@ -58,14 +93,13 @@ def _field_param(f: dataclasses.Field, value) -> dict:
     if f.type in ("bool", bool):
         return {"name": f.name, "title": "Clustered thresholds", "type": "bool", "value": value}
     spec = f.metadata["spec"]
-    kind = "int" if spec.integer else "float"
+    kind = "int" if spec.integer else "unit_float"
     step = 1 if spec.integer else (spec.high - spec.low) / 200.0
     return {
         "name": f.name,
         "title": spec.label,
         "type": kind,
         "value": value,
-        "limits": (spec.low, spec.high),
         "step": step,
         "suffix": f" {spec.unit}" if spec.unit else "",
         "decimals": 4,
@@ -218,7 +252,8 @@ class PatchPanel(QWidget):
         try:
             params = current.replace(**{name: value})
         except ParameterError as exc:
-            self.message.setText(str(exc))
+            label = PatchParams.spec(name).label if name in SPEC_NAMES else name
+            self.message.setText(f"{label}: {exc}")
             self._show(current)  # revert the control to the model
             return
         self.message.setText("")

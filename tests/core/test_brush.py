@@ -53,7 +53,7 @@ def test_dabs_follow_the_path_at_the_spacing_and_undo_restores_exactly():
     assert x == 0 and y <= 117 and y + h >= 140 and x + w >= 222
 
 
-def test_erase_returns_to_the_default_and_smooth_evens_out():
+def test_erase_removes_grass_and_smooth_evens_out():
     maps = DesignMaps(64)
     rng = np.random.default_rng(1)
     maps.write("density", 0, 0, rng.random((64, 64)))
@@ -64,7 +64,11 @@ def test_erase_returns_to_the_default_and_smooth_evens_out():
     assert maps.layer("density")[..., 0][centre].std() < 0.6 * noisy[centre].std()
     erase = Stroke(maps, "density", Brush(size=12, strength=1.0, falloff="constant", mode="erase"))
     erase.add(32.0, 32.0)
-    assert np.all(maps.layer("density")[28:36, 28:36, 0] == 1.0)
+    assert np.all(maps.layer("density")[28:36, 28:36, 0] == 0.0)  # bare where it erased
+    maps.fill("ambient", 0.3)  # a painted shadow ...
+    shade = Stroke(maps, "ambient", Brush(size=12, strength=1.0, falloff="constant", mode="erase"))
+    shade.add(32.0, 32.0)
+    assert np.all(maps.layer("ambient")[28:36, 28:36] == 1.0)  # ... erased to neutral light
 
 
 def test_fill_sets_the_whole_map_in_one_step_and_bad_brushes_are_refused():

@@ -278,3 +278,51 @@ def test_each_grass_type_has_its_own_blades(window, qtbot, tmp_path):
     assert panel.param("blade_count").value() == 300
     panel.param("grass_type").setValue(0)
     assert panel.param("blade_count").value() == first.blade_count
+
+
+def type_into(box, text):
+    """Type into a parameter's spin box as a person does: select all, type, Enter."""
+    from PySide6.QtTest import QTest
+
+    box.setFocus()
+    box.lineEdit().selectAll()
+    QTest.keyClicks(box.lineEdit(), text)
+    QTest.keyClick(box.lineEdit(), Qt.Key.Key_Return)
+
+
+def test_a_number_typed_without_its_unit_is_taken_in_that_unit(window, qtbot):
+    box = spin_box(window, "length_max")
+    assert box.lineEdit().text().endswith("patch units")
+    type_into(box, "0.36")
+    qtbot.waitUntil(lambda: window.document.params(0).length_max == pytest.approx(0.36))
+    type_into(box, "0.32 patch units")  # with the unit as well
+    qtbot.waitUntil(lambda: window.document.params(0).length_max == pytest.approx(0.32))
+    assert window.panel.message.text() == ""
+
+
+def test_an_out_of_range_value_is_refused_with_the_field_and_its_range(window, qtbot):
+    box = spin_box(window, "length_max")
+    before = window.document.params(0)
+    type_into(box, "5")
+    qtbot.waitUntil(lambda: window.panel.message.text() != "")
+    message = window.panel.message.text()
+    assert "Length max" in message and "0.005" in message and "… 2" in message
+    assert window.document.params(0) == before  # refused, not clamped to 2
+    assert box.value() == pytest.approx(before.length_max)
+    assert not window.undo_stack.canUndo()
+
+
+def test_the_readme_names_the_menus_as_they_are(window):
+    """Every `Menu → Item` the README mentions is an item of that menu."""
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    menus = {
+        action.text().replace("&", ""): [a.text().replace("&", "") for a in action.menu().actions()]
+        for action in window.menuBar().actions()
+    }
+    mentioned = re.findall(r"\*\*(\w+) → ([^*]+)\*\*", readme)
+    assert ("File", "New from built-in scene") in mentioned
+    for menu, item in mentioned:
+        assert item in menus[menu], (menu, item, menus[menu])

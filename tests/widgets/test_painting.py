@@ -80,19 +80,19 @@ def test_a_stroke_bares_the_grass_under_it_only_and_undo_redo_are_exact(window, 
     assert np.array_equal(window.document.maps.stack, painted)
 
 
-def test_ctrl_erases_back_to_full_density(window, qtbot):
+def test_painting_adds_grass_by_default_and_ctrl_erases_it(window, qtbot):
     vp = window.viewport
     top_view(window, qtbot)
     panel = window.paint_panel
     panel.select("density", 0)
+    assert panel.mode_box.currentText() == "paint" and panel.value_box.value() == 1.0
     panel.strength_box.setValue(1.0)
-    panel.value_box.setValue(0.0)
     panel.falloff_box.setCurrentText("constant")
     points, _ = stroke_line(vp)
-    drag(qtbot, vp, points)
+    drag(qtbot, vp, points, Qt.KeyboardModifier.ControlModifier)  # Ctrl: erase the grass
     assert window.document.maps.layer("density")[..., 0].min() == 0.0
-    panel.size_box.setValue(40)  # wider than the first stroke, so it erases all of it
-    drag(qtbot, vp, points, Qt.KeyboardModifier.ControlModifier)
+    panel.size_box.setValue(40)  # wider than the first stroke, so it paints all of it back
+    drag(qtbot, vp, points)  # a plain stroke with the default brush adds grass
     assert window.document.maps.layer("density")[..., 0].min() == 1.0
     assert window.undo_stack.count() == 2
 

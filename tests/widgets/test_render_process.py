@@ -1,0 +1,81 @@
+"""The render processes behind the viewport: the window outlives them, and what they draw is
+what `sward render` draws."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from core.project_file import load_project, save_project
+from tests.conftest import coverage
+from tests.widgets.conftest import grab, wait_full
+
+pytestmark = pytest.mark.gui
+
+
+def test_a_render_process_killed_mid_frame_is_replaced_and_the_project_kept(
+    window, qtbot, tmp_path
+):
+    vp = window.viewport
+    window.panel.param("density").setValue(0.5)
+    window.document.maps.write("color", 0, 0, np.full((40, 40, 4), 0.7, np.float32))
+    before = grab(window)
+    save_project(tmp_path / "before.sward", window.document)
+    restarts = []
+    vp.renderer_restarted.connect(restarts.append)
+    full = vp.renderer.pids["full"]
+    vp.camera.orbit(20.0, 0.0)  # a new full-quality frame starts ...
+    vp.request_frame()
+    qtbot.wait(150)
+    os.kill(full, signal.SIGKILL)  # ... and its process dies in the middle of it
+    qtbot.waitUntil(lambda: bool(restarts), timeout=20000)
+    assert window.isVisible()
+    assert "killed by signal 9" in restarts[0]
+    assert "killed by signal 9" in window.statusBar().currentMessage()
+    assert vp.renderer.pids["full"] != full
+    vp.camera.orbit(-20.0, 0.0)
+    vp.request_frame()
+    after = grab(window)  # the next full-quality frame arrives, from the new process
+    assert load_project(tmp_path / "before.sward").same_as(window.document)
+    assert coverage(after) == pytest.approx(coverage(before), abs=0.02)
+    assert np.abs(after.astype(int) - before.astype(int)).mean() < 2.0
+
+
+def test_a_killed_draft_process_comes_back_too(window, qtbot):
+    vp = window.viewport
+    restarts = []
+    vp.renderer_restarted.connect(restarts.append)
+    os.kill(vp.renderer.pids["draft"], signal.SIGKILL)
+    qtbot.waitUntil(lambda: bool(restarts), timeout=20000)
+    # the new process is up (it said hello) and has drawn the state it was sent
+    qtbot.waitUntil(lambda: vp.renderer.processes["draft"].max_image_size > 0, timeout=30000)
+    qtbot.wait(2000)
+    drafts = []
+    vp.frame_rendered.connect(lambda stats: stats.preview and drafts.append(stats))
+    vp.camera.orbit(15.0, 0.0)
+    vp.request_frame()
+    qtbot.waitUntil(lambda: bool(drafts), timeout=20000)
+    wait_full(window)
+
+
+def test_the_window_shows_what_sward_render_draws(window, qtbot, tmp_path):
+    """The same project and camera: the window's full-quality frame and `sward render` agree
+    pixel for pixel (one renderer, render/, in both)."""
+    shown = grab(window)
+    h, w = shown.shape[:2]
+    project, out = tmp_path / "p.sward", tmp_path / "cli.png"
+    save_project(project, window.document)
+    command = [sys.executable, "-m", "app.cli", "render", "--project", str(project)]
+    command += ["--camera", window.document.default_camera, "--size", f"{w}x{h}", "--out", str(out)]
+    started = time.monotonic()
+    subprocess.run(command, check=True, capture_output=True, timeout=300)
+    assert time.monotonic() - started < 300
+    with Image.open(out) as image:
+        drawn = np.asarray(image.convert("RGB"))
+    assert drawn.shape == shown.shape
+    assert np.array_equal(drawn, shown)
