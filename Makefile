@@ -28,8 +28,8 @@ test: system-deps lint
 	$(VENV)/bin/sward info
 	# core/ and the designer's controllers with Qt and GL unimportable (tests/blocked.py)
 	$(PY) -m pytest -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app
-	# Two processes: Mesa cannot hold a standalone EGL context and Qt's GLX widget context
-	# current in one process, so the window tests (marker gui) run on their own.
+	# The window tests (marker gui, under Xvfb) run in a process of their own; the window
+	# draws no GL (its frames come from render processes), the other tests use standalone EGL.
 	$(PY) -m pytest -m "not gui" --ignore=tests/core --ignore=tests/app
 	QT_QPA_PLATFORM=xcb $(PY) -m pytest -m gui
 

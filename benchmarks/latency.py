@@ -10,8 +10,8 @@ undo — while frames are being drawn. Reports:
   first full-quality frame that shows it.
 
 Run: `sward bench --suite latency --out results.json`. Without a display it starts Xvfb; the
-window runs in a process of its own (a standalone EGL context cannot share a process with Qt's
-GL context). The JSON holds each input's figures beside the summaries.
+window runs in a process of its own, apart from the EGL contexts of other suites. The JSON
+holds each input's figures beside the summaries.
 """
 
 from __future__ import annotations

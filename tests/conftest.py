@@ -2,9 +2,9 @@
 `headless`, which makes a fresh renderer for a document on that context (released after the
 test). Nothing here imports GL or Qt at import time: tests/core runs without either.
 
-Tests marked `gui` (real windows under Xvfb) must run in a process of their own: Mesa cannot hold
-the standalone EGL context and Qt's GLX widget context in one process. `make test` runs
-`pytest -m "not gui"` and then `pytest -m gui`.
+Tests marked `gui` (real windows under Xvfb) run in a process of their own, as `make test` runs
+`pytest -m "not gui"` and then `pytest -m gui`: the window's frames come from render processes
+(render/render_server.py), and keeping the EGL tests apart keeps each run's GL state its own.
 """
 
 from __future__ import annotations
@@ -82,6 +82,6 @@ def pytest_collection_modifyitems(config, items):
     kinds = {"gui" in item.keywords for item in items}
     if kinds == {True, False}:
         raise pytest.UsageError(
-            "window tests (marker gui) and EGL tests cannot share a process; run "
+            "window tests (marker gui) and EGL tests run in processes of their own; run "
             '`pytest -m "not gui"` and `pytest -m gui` separately (as `make test` does)'
         )
