@@ -289,11 +289,16 @@ class DesignerWindow(QMainWindow):
 
     def _show_status(self, stats) -> None:
         busy = f"{self._renderer_status} · " if self._renderer_status else ""
-        kind = "draft" if stats.preview else "frame"
+        if stats.preview:  # a draft is timed as a whole only
+            timing = f"draft {stats.t_a_ms:.0f} ms, full quality follows"
+        else:
+            timing = (
+                f"frame {stats.t_a_ms:.0f} ms "
+                f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
+            )
         self.status.setText(
             busy + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
-            f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {kind} {stats.t_a_ms:.0f} ms "
-            f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
+            f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {timing}"
             + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
         )
 

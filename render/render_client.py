@@ -60,15 +60,30 @@ class _Process:
     out: MappedArray | None = None
     out_capacity: int = 0
     facts: dict = field(default_factory=dict)
+    stack: MappedArray | None = None  # its own copy of the design-map stack
     # frame files outgrown by a larger screenshot: a request in flight may still name one
     old_outs: list = field(default_factory=list)
+    named: set = field(default_factory=set)  # files made for it that still have a name
+
+    def new_file(self, nbytes: int, prefix: str) -> str:
+        path = _new_file(nbytes, prefix)
+        self.named.add(path)
+        return path
+
+    def forget_name(self, path: str) -> None:
+        """The process has mapped the file: its name is no longer needed (so nothing is left
+        behind in /dev/shm if the window itself is killed later)."""
+        if path in self.named:
+            self.named.discard(path)
+            with contextlib.suppress(OSError):
+                os.unlink(path)
 
     def release_files(self) -> None:
-        for out in [*self.old_outs, *([self.out] if self.out is not None else [])]:
-            out.close()
-            with contextlib.suppress(OSError):
-                os.unlink(out.path)
-        self.old_outs, self.out = [], None
+        for mapped in [*self.old_outs, *(f for f in (self.out, self.stack) if f is not None)]:
+            mapped.close()
+        for path in list(self.named):
+            self.forget_name(path)
+        self.old_outs, self.out, self.stack = [], None, None
 
 
 class RenderClient:
@@ -81,7 +96,6 @@ class RenderClient:
         self.on_frame = on_frame
         self.on_status = on_status
         self.on_restart = on_restart  # (role, what happened): a process died and was restarted
-        self._stack: MappedArray | None = None
         self._document: Document | None = None
         self._dirty: dict[str, tuple[int, int, int, int]] = {}
         self._replay: dict[str, tuple] = {}  # view state a restarted process needs again
@@ -161,6 +175,8 @@ class RenderClient:
             image = p.out.array[: w * h * 4].reshape(h, w, 4).copy()
             p.conn.send(("ack",))
             self.on_frame(Frame(version, frame_kind, image, stats))
+        elif kind == "mapped":
+            p.forget_name(args[0])
         elif kind == "status":
             self.on_status(args[0])
         elif kind == "facts":
@@ -204,24 +220,24 @@ class RenderClient:
 
     def open(self, document: Document) -> None:
         """Send a whole document (a new one, or the first)."""
-        if self._stack is not None:
-            self._stack.close()
-            os.unlink(self._stack.path)
-        stack = document.maps.stack
-        path = _new_file(stack.nbytes, "sward-maps-")
-        self._stack = MappedArray(path, stack.shape)
-        self._stack.array[:] = stack
         self._document = document
         self._dirty.clear()
         for role in ROLES:
             self._open_in(role)
 
     def _open_in(self, role: str) -> None:
-        self._flush_maps()  # the mapped stack holds every edit before the process reads it
-        shape = self._document.maps.stack.shape
+        """The document to one process, with a mapped copy of the stack of its own (a process
+        started anew gets the stack as it is now)."""
+        self._flush_maps()
+        p = self.processes[role]
+        if p.stack is not None:
+            p.stack.close()
+        stack = self._document.maps.stack
+        p.stack = MappedArray(p.new_file(stack.nbytes, "sward-maps-"), stack.shape)
+        p.stack.array[:] = stack
         # the same plain data a project file holds (JSON), so the replica is built as a load is
         data = json.loads(json.dumps(document_data(self._document)))
-        self._send(("open", data, self._stack.path, shape), (role,))
+        self._send(("open", data, p.stack.path, stack.shape), (role,))
 
     def change(self, kind: str, *args) -> None:
         """A change of the open document: params, lod, set (density / slices / light),
@@ -233,13 +249,15 @@ class RenderClient:
         self._dirty[name] = union(self._dirty.get(name), rect)
 
     def _flush_maps(self) -> None:
-        if self._stack is None:
+        if self._document is None:
             return
         stack = self._document.maps.stack
         for name, (x, y, w, h) in self._dirty.items():
             i = LAYER_INDEX[name]
             c = LAYERS[i].channels
-            self._stack.array[i, y : y + h, x : x + w, :c] = stack[i, y : y + h, x : x + w, :c]
+            for p in self.processes.values():
+                if p.stack is not None:
+                    p.stack.array[i, y : y + h, x : x + w, :c] = stack[i, y : y + h, x : x + w, :c]
             self._send(("maps", name, (x, y, w, h)))
         self._dirty.clear()
 
@@ -254,6 +272,8 @@ class RenderClient:
     def request(self, version: int, camera, size: tuple[int, int], kind: str = "view") -> None:
         """Ask for a frame of the current state: a draft and a full frame (`view`), or only a
         full one (`image`: a screenshot of any size)."""
+        if self._closed:
+            return
         self._flush_maps()
         request = {
             "version": version,
@@ -275,7 +295,7 @@ class RenderClient:
             if p.out is not None:
                 p.old_outs.append(p.out)
             capacity = max(need, 1920 * 1200 * 4)
-            p.out = MappedArray(_new_file(capacity, f"sward-{role}-"), (capacity,), np.uint8)
+            p.out = MappedArray(p.new_file(capacity, f"sward-{role}-"), (capacity,), np.uint8)
             p.out_capacity = capacity
         self._send(("frame", dict(request, out_path=p.out.path, out_bytes=p.out_capacity)), (role,))
 
@@ -301,7 +321,3 @@ class RenderClient:
             with contextlib.suppress(OSError):
                 p.conn.close()
             p.release_files()
-        if self._stack is not None:
-            self._stack.close()
-            os.unlink(self._stack.path)
-            self._stack = None

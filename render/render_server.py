@@ -99,6 +99,7 @@ class RenderServer:
         if self.stack is not None:
             self.stack.close()
         self.stack = MappedArray(stack_path, shape)
+        self.conn.send(("mapped", stack_path))
         self.document = document_from_data(data, self.stack.array)
         self.binding = DocumentBinding(self.pipeline, self.document)
 
@@ -180,6 +181,7 @@ class RenderServer:
             if self.out is not None:
                 self.out.close()
             self.out = MappedArray(request["out_path"], (request["out_bytes"],), np.uint8)
+            self.conn.send(("mapped", self.out.path))
         image = context.read_rgb(fbo, (w, h), 4)
         self.out.array[: image.size] = image.reshape(-1)
         self.waiting_ack = True

@@ -79,3 +79,17 @@ def test_the_window_shows_what_sward_render_draws(window, qtbot, tmp_path):
         drawn = np.asarray(image.convert("RGB"))
     assert drawn.shape == shown.shape
     assert np.array_equal(drawn, shown)
+
+
+def test_shared_files_lose_their_names_once_mapped(window, qtbot):
+    """The frames and the map stack travel through files in /dev/shm: each is unlinked as soon
+    as the render process has mapped it, so even a killed window leaves none behind."""
+    grab(window)
+    paths = [
+        f.path
+        for p in window.viewport.renderer.processes.values()
+        for f in (p.out, p.stack)
+        if f is not None
+    ]
+    assert len(paths) == 4  # a frame file and a stack copy per process
+    qtbot.waitUntil(lambda: not any(os.path.exists(path) for path in paths), timeout=10000)
