@@ -60,7 +60,8 @@ class FramePipeline:
         self.view = "shaded"  # shaded | techniques
         self.slice_params = SliceParams()
         # True: slices are converted here, at once, when a mode needs them (command line, tests).
-        # The viewport sets False and converts step by step (widgets/slice_builder.py).
+        # The draft render process sets False and converts after its first draft
+        # (render/render_server.py).
         self.auto_convert = True
         self._converter: PatchConverter | None = None
         self.lighting = Lighting()
