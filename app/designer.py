@@ -59,6 +59,7 @@ class DesignerWindow(QMainWindow):
         self.autosave = Autosave(
             default_directory(), self.projects, self.undo_stack, self.dialogs, settings
         )
+        self.projects.saved = self.autosave.discard  # recovery never offers work older than it
         self._autosave_timer = QTimer(self, interval=INTERVAL_MS, timeout=self.autosave.save_now)
         self._autosave_timer.start()
         self.undo_stack.cleanChanged.connect(self._on_clean_changed)

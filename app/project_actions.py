@@ -34,6 +34,8 @@ class ProjectActions:
         self.dialogs = dialogs
         self.settings = settings
         self.recent_changed = recent_changed
+        # after a save: the autosave holds nothing newer than the file any more (app/autosave.py)
+        self.saved: Callable[[], None] = lambda: None
         self.path: Path | None = None
 
     def save(self) -> bool:
@@ -52,6 +54,7 @@ class ProjectActions:
             return False
         self.path = path
         self.history.setClean()
+        self.saved()
         self._remember(path)
         self.dialogs.status(f"saved {path}", 4000)
         return True

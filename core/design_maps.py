@@ -57,8 +57,9 @@ class DesignMaps:
             self.stack[i] = layer.default
 
     @classmethod
-    def from_stack(cls, stack: np.ndarray) -> DesignMaps:
-        """Maps holding a copy of `stack` (layers, rows, columns, 4), e.g. read from a file."""
+    def from_stack(cls, stack: np.ndarray, copy: bool = True) -> DesignMaps:
+        """Maps holding a copy of `stack` (layers, rows, columns, 4); `copy=False` adopts a
+        float32 array read from a file (no second full copy in memory)."""
         stack = np.asarray(stack, np.float32)
         if stack.ndim != 4 or stack.shape[0] != len(LAYERS) or stack.shape[3] != 4:
             raise ValueError(
@@ -66,6 +67,10 @@ class DesignMaps:
             )
         if not np.all(np.isfinite(stack)):
             raise ValueError("a design-map stack must hold finite numbers")
+        if not copy and stack.flags.c_contiguous and stack.flags.writeable:
+            maps = cls.__new__(cls)
+            maps.stack = stack
+            return maps
         maps = cls(stack.shape[2], stack.shape[1])
         maps.stack[:] = stack
         return maps

@@ -35,6 +35,12 @@ class CameraSpec:
     far: float = 500.0
     near: float = 0.02
 
+    def __post_init__(self) -> None:
+        if not 0.0 < self.near < self.far:
+            raise ValueError(f"a camera needs 0 < near < far, got near {self.near}, far {self.far}")
+        if tuple(self.eye) == tuple(self.target):
+            raise ValueError("a camera's eye and target must differ")
+
     def camera(self) -> Camera:
         return Camera.from_eye_target(self.eye, self.target, near=self.near, far=self.far)
 

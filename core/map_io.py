@@ -7,14 +7,20 @@ the reason."""
 from __future__ import annotations
 
 import math
+import os
+import stat
+import warnings
 from pathlib import Path
 
 import numpy as np
 from PIL import Image, UnidentifiedImageError
 
-from core.design_maps import LAYER_INDEX, LAYERS
+from core.design_maps import LAYER_INDEX, LAYERS, MAX_SIZE
 
 RAW_SUFFIXES = (".r16", ".raw")
+# the image formats a map is read from: no EPS / PostScript (Ghostscript), no exotic decoders
+FORMATS = ("PNG", "TIFF", "JPEG", "BMP")
+MAX_PIXELS = MAX_SIZE * MAX_SIZE
 
 
 class MapFileError(Exception):
@@ -25,16 +31,44 @@ def read_image(path: Path | str) -> np.ndarray:
     """(rows, columns, channels) float32 in 0 … 1: 1 channel for greyscale (8 or 16 bit),
     3 for RGB, 4 for RGBA."""
     path = Path(path)
+    _regular(path)
     try:
-        with Image.open(path) as image:
-            image.load()
-            return _to_array(image, path)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", Image.DecompressionBombWarning)
+            with Image.open(path, formats=FORMATS) as image:
+                w, h = image.size
+                if w * h > MAX_PIXELS:
+                    raise MapFileError(
+                        f"{path.name}: {w} × {h} pixels is more than a map holds "
+                        f"({MAX_SIZE} × {MAX_SIZE})"
+                    )
+                image.load()
+                return _to_array(image, path)
+    except MapFileError:
+        raise
     except FileNotFoundError:
         raise MapFileError(f"{path}: no such file") from None
     except UnidentifiedImageError:
-        raise MapFileError(f"{path.name}: not an image Sward can read") from None
-    except (OSError, SyntaxError, ValueError) as exc:  # Pillow's truncated / broken files
-        raise MapFileError(f"{path.name}: the image is damaged or truncated ({exc})") from None
+        raise MapFileError(
+            f"{path.name}: not an image Sward reads ({', '.join(FORMATS)})"
+        ) from None
+    except (Image.DecompressionBombError, Image.DecompressionBombWarning):
+        raise MapFileError(f"{path.name}: too many pixels for a map") from None
+    except Exception as exc:  # any decoder failure of a damaged file: one line, never a trace
+        raise MapFileError(
+            f"{path.name}: the image is damaged or truncated ({type(exc).__name__}: {exc})"
+        ) from None
+
+
+def _regular(path: Path) -> None:
+    try:
+        info = os.stat(path)
+    except FileNotFoundError:
+        raise MapFileError(f"{path}: no such file") from None
+    except OSError as exc:
+        raise MapFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    if not stat.S_ISREG(info.st_mode):
+        raise MapFileError(f"{path.name}: not a regular file")
 
 
 def _to_array(image: Image.Image, path: Path) -> np.ndarray:
@@ -59,6 +93,11 @@ def _to_array(image: Image.Image, path: Path) -> np.ndarray:
         data = data[..., None]
     if not np.all(np.isfinite(data)):
         raise MapFileError(f"{path.name}: the image holds values that are not numbers")
+    if mode == "F" and (data.min() < 0.0 or data.max() > 1.0):
+        raise MapFileError(
+            f"{path.name}: a floating-point image must hold values in 0 … 1, "
+            f"found {float(data.min()):g} … {float(data.max()):g}"
+        )
     return data
 
 
@@ -72,20 +111,22 @@ def read_raw16(
 ) -> np.ndarray:
     """A raw 16-bit height field (no header): (rows, columns, 1) in low … high."""
     path = Path(path)
-    if width < 1 or height < 1:
-        raise MapFileError(f"{path.name}: width and height must be at least 1")
+    if not (1 <= width <= MAX_SIZE and 1 <= height <= MAX_SIZE):
+        raise MapFileError(f"{path.name}: width and height must be 1 … {MAX_SIZE}")
+    _regular(path)
+    expected = width * height * 2
+    size = os.stat(path).st_size  # checked before anything is read
+    if size != expected:
+        side = math.isqrt(size // 2)
+        hint = f"; a square map of {side} × {side}?" if side * side * 2 == size else ""
+        raise MapFileError(
+            f"{path.name}: {size:,} bytes, but {width} × {height} 16-bit values need "
+            f"{expected:,}{hint}"
+        )
     try:
         data = path.read_bytes()
     except OSError as exc:
         raise MapFileError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    expected = width * height * 2
-    if len(data) != expected:
-        side = math.isqrt(len(data) // 2)
-        hint = f"; a square map of {side} × {side}?" if side * side * 2 == len(data) else ""
-        raise MapFileError(
-            f"{path.name}: {len(data):,} bytes, but {width} × {height} 16-bit values need "
-            f"{expected:,}{hint}"
-        )
     values = np.frombuffer(data, ">u2" if big_endian else "<u2").reshape(height, width)
     return (low + (high - low) * (values.astype(np.float32) / 65535.0))[..., None]
 

@@ -6,18 +6,24 @@ the old one and moved over it, so a crash mid-save leaves the old file.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import io
 import json
 import os
+import stat
 import tempfile
+import time
 import zipfile
+import zlib
 from pathlib import Path
 from typing import Any
 
+import msgspec
 import numpy as np
 
-from core.design_maps import DesignMaps
+from core import project_schema
+from core.design_maps import LAYERS, DesignMaps
 from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, TerrainSpec
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
@@ -36,6 +42,14 @@ LIGHT = (
     "blade_ao_impact",
     "blade_ao_height",
 )
+
+
+MAX_FILE_BYTES = 4 << 30
+MAX_JSON_BYTES = 16 << 20
+MAX_MAP_SIDE = 4096  # a project's maps: at most 4096 × 4096 texels (1.3 GB of float32)
+MAX_STACK_BYTES = len(LAYERS) * MAX_MAP_SIDE * MAX_MAP_SIDE * 4 * 4
+# the largest value each map may hold (the smallest is 0)
+MAP_RANGES = {"density": 1.0, "color": 1.0, "ambient": 4.0, "diffuse": 4.0, "height": 1.0}
 
 
 class ProjectError(Exception):
@@ -135,7 +149,7 @@ def document_data(doc: Document) -> dict:
     }
 
 
-def document_from_data(data: dict, stack: np.ndarray) -> Document:
+def document_from_data(data: dict, stack: np.ndarray, copy: bool = True) -> Document:
     terrain = data["terrain"]
     grass = [GrassType(MAIN_GRASS, PatchParams.from_dict(data["params"]), _lod_from(data["lod"]))]
     for g in data.get("grass", []):
@@ -150,7 +164,7 @@ def document_from_data(data: dict, stack: np.ndarray) -> Document:
             terrain.get("mirror_seed"),
             float(terrain.get("height_scale", 0.0)),
         ),
-        DesignMaps.from_stack(stack),
+        DesignMaps.from_stack(stack, copy=copy),
         description=str(data.get("description", "")),
         density=float(data.get("density", 1.0)),
         slices=SliceParams(**data.get("slices", {})),
@@ -167,25 +181,53 @@ def document_from_data(data: dict, stack: np.ndarray) -> Document:
 
 # -- files -----------------------------------------------------------------------------------
 def save_project(path: Path | str, doc: Document) -> None:
-    """Write the document and its maps to `path`, atomically."""
+    """Write the document and its maps to `path`, atomically and durably: a temporary file
+    beside the target, flushed to disk, renamed over it, the folder flushed too. Saving through
+    a symbolic link writes the file it points to; temporary files an earlier crash left behind
+    are removed."""
     path = Path(path)
+    target = Path(os.path.realpath(path))  # through a link: its target, not the link
     try:
         text = json.dumps(document_data(doc), indent=2)
         buffer = io.BytesIO()
         np.savez_compressed(buffer, stack=doc.maps.stack)
-        folder = path.resolve().parent
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+        folder = target.parent
+        _remove_stale_temporaries(target)
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
         try:
-            with os.fdopen(fd, "wb") as raw, zipfile.ZipFile(raw, "w") as z:
-                z.writestr("project.json", text)
-                z.writestr("maps.npz", buffer.getvalue())
-            os.chmod(tmp, _mode(path))
-            os.replace(tmp, path)
+            with os.fdopen(fd, "wb") as raw:
+                with zipfile.ZipFile(raw, "w") as z:
+                    z.writestr("project.json", text)
+                    z.writestr("maps.npz", buffer.getvalue())
+                raw.flush()
+                os.fsync(raw.fileno())
+            os.chmod(tmp, _mode(target))
+            os.replace(tmp, target)
+            _fsync_folder(folder)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
     except (OSError, TypeError, ValueError) as exc:
         raise ProjectError(f"cannot save {path}: {exc}") from None
+
+
+STALE_S = 60.0  # a temporary file this old belongs to no save in progress
+
+
+def _remove_stale_temporaries(target: Path) -> None:
+    now = time.time()
+    for old in target.parent.glob(f".{target.name}.*.tmp"):
+        with contextlib.suppress(OSError):
+            if now - old.stat().st_mtime > STALE_S:
+                old.unlink()
+
+
+def _fsync_folder(folder: Path) -> None:
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
 
 
 def _mode(path: Path) -> int:
@@ -198,32 +240,147 @@ def _mode(path: Path) -> int:
 
 
 def load_project(path: Path | str) -> Document:
-    """The document stored in `path`; a file that is not a readable project of a known version
-    raises ProjectError naming the file and the reason."""
+    """The document stored in `path`. A file that is not a readable, valid project of a known
+    version raises ProjectError naming the file, the field and the rule; reading is bounded in
+    time and memory (only regular files, member sizes checked before inflating, the maps' array
+    header before allocating, the maps read once into their own array)."""
     path = Path(path)
     try:
-        with zipfile.ZipFile(path) as z:
-            data = json.loads(z.read("project.json"))
-            with np.load(io.BytesIO(z.read("maps.npz"))) as arrays:
-                stack = np.array(arrays["stack"], np.float32)
+        return _load(path)
+    except ProjectError:
+        raise
     except FileNotFoundError:
         raise ProjectError(f"cannot open {path}: no such file") from None
+    except PermissionError:
+        raise ProjectError(f"cannot open {path}: permission denied") from None
     except zipfile.BadZipFile:
         raise ProjectError(f"cannot open {path}: not a Sward project (not a zip file)") from None
-    except KeyError as exc:
-        raise ProjectError(f"cannot open {path}: it lacks {exc.args[0]}") from None
-    except (OSError, ValueError, EOFError) as exc:
-        raise ProjectError(f"cannot open {path}: damaged ({exc})") from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise ProjectError(f"cannot open {path}: not a Sward project")
-    if data.get("version") != VERSION:
-        raise ProjectError(
-            f"cannot open {path}: project format version {data.get('version')!r}; "
-            f"this Sward reads version {VERSION}"
-        )
-    try:
-        return document_from_data(data, stack)
-    except (KeyError, TypeError) as exc:
-        raise ProjectError(f"cannot open {path}: missing or malformed entry {exc}") from None
-    except (ParameterError, ValueError) as exc:
+    except (msgspec.ValidationError, msgspec.DecodeError) as exc:
+        raise ProjectError(f"cannot open {path}: project.json: {_rule(exc)}") from None
+    except (ParameterError, ValueError, TypeError, KeyError, OverflowError) as exc:
         raise ProjectError(f"cannot open {path}: {exc}") from None
+    except (OSError, EOFError, RuntimeError, NotImplementedError, zlib.error, MemoryError) as exc:
+        raise ProjectError(f"cannot open {path}: damaged ({type(exc).__name__}: {exc})") from None
+
+
+def _rule(exc: Exception) -> str:
+    """msgspec's message with the field first: `terrain.columns: Expected int <= 16384`."""
+    text = str(exc)
+    if " - at `$." in text:
+        rule, where = text.rsplit(" - at `$.", 1)
+        return f"{where.rstrip('`')}: {rule[0].lower()}{rule[1:]}"
+    return text
+
+
+def _load(path: Path) -> Document:
+    info = os.stat(path)  # follows a link: its target must be a regular file too
+    if not stat.S_ISREG(info.st_mode):
+        raise ProjectError(f"cannot open {path}: not a regular file")
+    if info.st_size > MAX_FILE_BYTES:
+        raise ProjectError(f"cannot open {path}: larger than {MAX_FILE_BYTES >> 30} GiB")
+    with zipfile.ZipFile(path) as z:
+        raw = _member(z, "project.json", MAX_JSON_BYTES, path)
+        head = project_schema.head(raw)
+        if head.format != FORMAT:
+            raise ProjectError(f"cannot open {path}: not a Sward project")
+        if head.version != VERSION:
+            raise ProjectError(
+                f"cannot open {path}: project format version {head.version!r}; "
+                f"this Sward reads version {VERSION}"
+            )
+        project = project_schema.decode(raw)
+        stack = _maps(z, path)
+    document = document_from_data(msgspec.to_builtins(project), stack, copy=False)
+    return document
+
+
+def _member(z: zipfile.ZipFile, name: str, limit: int, path: Path) -> bytes:
+    try:
+        info = z.getinfo(name)
+    except KeyError:
+        raise ProjectError(f"cannot open {path}: it lacks {name}") from None
+    _check_member(info, limit, path)
+    return z.read(info)
+
+
+def _check_member(info: zipfile.ZipInfo, limit: int, path: Path) -> None:
+    name = info.filename
+    if info.flag_bits & 0x1:
+        raise ProjectError(f"cannot open {path}: {name} is encrypted")
+    if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
+        raise ProjectError(f"cannot open {path}: {name} uses an unsupported compression")
+    if info.file_size > limit:
+        raise ProjectError(
+            f"cannot open {path}: {name} would inflate to {info.file_size:,} bytes "
+            f"(at most {limit:,})"
+        )
+
+
+def _maps(z: zipfile.ZipFile, path: Path) -> np.ndarray:
+    """maps.npz's `stack`: its header checked, then read once into its own array."""
+    outer = _member(z, "maps.npz", MAX_STACK_BYTES + 65536, path)
+    if not outer.startswith(b"PK"):
+        raise ProjectError(f"cannot open {path}: maps.npz is not an npz archive")
+    with zipfile.ZipFile(io.BytesIO(outer)) as inner:
+        try:
+            info = inner.getinfo("stack.npy")
+        except KeyError:
+            raise ProjectError(f"cannot open {path}: maps.npz lacks the array 'stack'") from None
+        _check_member(info, MAX_STACK_BYTES + 4096, path)
+        with inner.open(info) as f:
+            version = np.lib.format.read_magic(f)
+            if version == (1, 0):
+                shape, fortran, dtype = np.lib.format.read_array_header_1_0(f)
+            elif version == (2, 0):
+                shape, fortran, dtype = np.lib.format.read_array_header_2_0(f)
+            else:
+                raise ProjectError(f"cannot open {path}: maps.npz: unknown .npy version")
+            _check_stack_header(shape, fortran, dtype, path)
+            stack = np.empty(shape, np.float32)
+            if _read_into(f, stack) != stack.nbytes:
+                raise ProjectError(f"cannot open {path}: maps.npz: the maps are truncated")
+    _check_stack_values(stack, path)
+    return stack
+
+
+def _read_into(f: Any, array: np.ndarray) -> int:
+    """Fill `array` from the stream in chunks: the only copy of the maps is the array itself."""
+    view = memoryview(array.reshape(-1).view(np.uint8))  # type: ignore[arg-type]
+    done = 0
+    while done < len(view):
+        n = f.readinto(view[done : done + (64 << 20)])
+        if not n:
+            break
+        done += n
+    return done
+
+
+def _check_stack_header(shape, fortran: bool, dtype, path: Path) -> None:
+    layers = len(LAYERS)
+    ok = (
+        len(shape) == 4
+        and shape[0] == layers
+        and shape[3] == 4
+        and 1 <= shape[1] <= MAX_MAP_SIDE
+        and 1 <= shape[2] <= MAX_MAP_SIDE
+    )
+    if not ok:
+        raise ProjectError(
+            f"cannot open {path}: maps.npz: the stack must be ({layers}, rows, columns, 4) with "
+            f"rows and columns 1 … {MAX_MAP_SIDE}, got {tuple(shape)}"
+        )
+    if np.dtype(dtype) != np.dtype("<f4") or fortran:
+        raise ProjectError(f"cannot open {path}: maps.npz: the stack must be float32, got {dtype}")
+
+
+def _check_stack_values(stack: np.ndarray, path: Path) -> None:
+    """Every map within its range (NaN and infinity fail both tests)."""
+    for i, layer in enumerate(LAYERS):
+        values = stack[i, :, :, : layer.channels]
+        low, high = float(values.min()), float(values.max())
+        top = MAP_RANGES[layer.name]
+        if not (0.0 <= low and high <= top):
+            raise ProjectError(
+                f"cannot open {path}: maps.npz: the {layer.name} map must hold numbers in "
+                f"0 … {top:g}, found {low:g} … {high:g}"
+            )

@@ -81,9 +81,9 @@ def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
         "text.sward": "not a zip file",
         "truncated.sward": "",
         "future.sward": "version 99",
-        "badparam.sward": "blade_count",
-        "badlight.sward": "sun elevation",
-        "nolod.sward": "lod",
+        "badparam.sward": "params.blade_count: expected `int` >= 1",
+        "badlight.sward": "light.sun_elevation: expected `float` <= 90",
+        "nolod.sward": "missing required field `lod`",
     }
     for name, reason in expected.items():
         with pytest.raises(ProjectError, match=name) as info:
@@ -108,3 +108,63 @@ def test_a_failed_save_leaves_the_old_file(tmp_path, meadow, monkeypatch):
         save_project(path, doc)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["keep.sward"]  # no temporary left over
+
+
+def test_saving_through_a_link_writes_its_target_and_clears_old_temporaries(tmp_path, meadow):
+    import os
+    import time
+
+    real = tmp_path / "real.sward"
+    doc = meadow.document()
+    save_project(real, doc)
+    link = tmp_path / "link.sward"
+    link.symlink_to(real)
+    stale = tmp_path / ".real.sward.abc123.tmp"  # left by a save that was killed
+    stale.write_bytes(b"half a file")
+    old = time.time() - 3600
+    os.utime(stale, (old, old))
+    doc.density = 0.25
+    save_project(link, doc)
+    assert link.is_symlink()  # the link stays a link ...
+    assert load_project(real).density == 0.25  # ... and the file it points to was written
+    assert not stale.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.sward", "real.sward"]
+
+
+def test_a_save_killed_at_any_moment_leaves_the_old_or_the_new_file(tmp_path, meadow):
+    """kill -9 of a process saving in a loop: the file always loads, as the old version or the
+    new one, and the next save clears what the killed ones left."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    path = tmp_path / "p.sward"
+    save_project(path, meadow.document())
+    script = (
+        "import sys\n"
+        "from app.scenes import get_scene\n"
+        "from core.project_file import save_project\n"
+        "doc = get_scene('patch-grid').document()\n"
+        "print('saving', flush=True)\n"
+        "for i in range(10**6):\n"
+        "    doc.density = (i % 10) / 10\n"
+        "    save_project(sys.argv[1], doc)\n"
+    )
+    for delay in (0.0, 0.05, 0.1, 0.15, 0.2):
+        saver = subprocess.Popen(
+            [sys.executable, "-c", script, str(path)], stdout=subprocess.PIPE, text=True
+        )
+        assert saver.stdout.readline() == "saving\n"  # the loop runs
+        time.sleep(delay)
+        saver.send_signal(signal.SIGKILL)
+        saver.wait()
+        saver.stdout.close()
+        loaded = load_project(path)  # never a torn file
+        assert 0.0 <= loaded.density <= 1.0
+    old = time.time() - 3600  # what the killed saves left is stale by now
+    for leftover in tmp_path.glob(".p.sward.*.tmp"):
+        os.utime(leftover, (old, old))
+    save_project(path, meadow.document())
+    assert [p.name for p in tmp_path.iterdir()] == ["p.sward"]

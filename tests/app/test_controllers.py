@@ -219,3 +219,15 @@ def test_a_raw_import_asks_for_its_layout_and_a_cancel_changes_nothing(tmp_path)
     assert not files.import_map(raw)
     dialogs.raw_height_options.assert_called_once_with("h.r16", 512)
     assert imports == []
+
+
+def test_a_save_removes_the_autosave_so_recovery_never_offers_older_work(tmp_path):
+    projects, history, dialogs, _, state = actions(tmp_path, clean=False)
+    autosave = Autosave(tmp_path / "auto", projects, history, dialogs, DictSettings())
+    projects.saved = autosave.discard
+    state["doc"].density = 0.3
+    assert autosave.save_now() and autosave.path.exists()
+    dialogs.save_path.return_value = str(tmp_path / "mine.sward")
+    assert projects.save()
+    assert not autosave.path.exists()
+    assert not autosave.recover_if_any()  # nothing older than the saved file is offered

@@ -11,7 +11,7 @@ from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, Ter
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.params import PRESETS, SLICE_COUNTS, PatchParams, SliceParams
-from core.project_file import load_project, save_project
+from core.project_file import MAP_RANGES, load_project, save_project
 
 finite = st.floats(-500.0, 500.0, allow_nan=False, width=32)
 unit = st.floats(0.0, 1.0, allow_nan=False)
@@ -63,7 +63,11 @@ def lods(draw) -> LodConfig:
     )
 
 
-cameras = st.builds(CameraSpec, vec3, vec3, st.floats(10.0, 5000.0), st.floats(0.001, 1.0))
+cameras = (
+    st.tuples(vec3, vec3, st.floats(10.0, 5000.0), st.floats(0.001, 1.0))
+    .filter(lambda c: c[0] != c[1])
+    .map(lambda c: CameraSpec(*c))
+)
 
 
 @st.composite
@@ -74,13 +78,14 @@ def documents(draw) -> Document:
         for i in range(count)
     ]
     w, h = draw(st.integers(1, 9)), draw(st.integers(1, 9))
-    stack = draw(
-        st.lists(
-            st.floats(-2.0, 4.0, width=32),
-            min_size=len(LAYERS) * w * h * 4,
-            max_size=len(LAYERS) * w * h * 4,
+    n = w * h * 4
+    stack = [  # every map within the range a project file allows (core/project_file.py)
+        v
+        for layer in LAYERS
+        for v in draw(
+            st.lists(st.floats(0.0, MAP_RANGES[layer.name], width=32), min_size=n, max_size=n)
         )
-    )
+    ]
     maps = DesignMaps.from_stack(np.array(stack, np.float32).reshape(len(LAYERS), h, w, 4))
     named = draw(
         st.dictionaries(st.text("abcxyz ", min_size=1, max_size=8), cameras, min_size=1, max_size=4)

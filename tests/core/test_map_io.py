@@ -1,6 +1,8 @@
 """Map import and export: 8/16-bit greyscale and RGBA PNGs, raw 16-bit heights, resampling,
 and bad files refused with a message naming them."""
 
+import os
+
 import numpy as np
 import pytest
 from PIL import Image
@@ -68,3 +70,29 @@ def test_bad_files_are_refused_naming_file_and_reason(tmp_path, name, content, r
     with pytest.raises(MapFileError, match=reason) as info:
         read_image(path)
     assert name in str(info.value)
+
+
+def test_imports_are_bounded_and_only_known_formats_are_read(tmp_path):
+    from PIL import Image
+
+    from core.map_io import MAX_SIZE
+
+    eps = tmp_path / "drawing.png"  # PostScript named .png: never handed to Ghostscript
+    eps.write_bytes(b"%!PS-Adobe-3.0 EPSF-3.0\n%%BoundingBox: 0 0 10 10\nshowpage\n")
+    with pytest.raises(MapFileError, match="not an image Sward reads"):
+        read_image(eps)
+    big = tmp_path / "big.png"  # a small file of very many pixels
+    Image.new("1", (MAX_SIZE + 1, MAX_SIZE + 1)).save(big)
+    assert big.stat().st_size < 10 << 20
+    with pytest.raises(MapFileError, match="more than a map holds"):
+        read_image(big)
+    hot = tmp_path / "hot.tif"  # float values outside 0 … 1
+    Image.fromarray(np.full((4, 4), 7.5, np.float32), "F").save(hot)
+    with pytest.raises(MapFileError, match=r"0 … 1, found 7.5"):
+        read_image(hot)
+    fifo = tmp_path / "pipe.png"
+    os.mkfifo(fifo)
+    with pytest.raises(MapFileError, match="not a regular file"):
+        read_image(fifo)
+    with pytest.raises(MapFileError, match="not a regular file"):
+        read_raw16(fifo, 4, 4)
