@@ -18,6 +18,7 @@ SUITES = (
     "brush",
     "preview",
     "latency",
+    "files",
 )
 MODULES = {"techniques": "representations"}
 

@@ -56,9 +56,7 @@ class DesignerWindow(QMainWindow):
             settings,
             lambda: self.fill_recent_menu(),
         )
-        self.autosave = Autosave(
-            default_directory(), self.projects, self.undo_stack, self.dialogs, settings
-        )
+        self.autosave = Autosave(default_directory(), self.projects, self.undo_stack, self.dialogs)
         self.projects.saved = self.autosave.discard  # recovery never offers work older than it
         self._autosave_timer = QTimer(self, interval=INTERVAL_MS, timeout=self.autosave.save_now)
         self._autosave_timer.start()
@@ -362,7 +360,7 @@ class DesignerWindow(QMainWindow):
             event.ignore()
             return
         self._autosave_timer.stop()
-        self.autosave.discard()
+        self.autosave.close()
         self.viewport.close_renderer()
         super().closeEvent(event)
 

@@ -154,29 +154,110 @@ def test_unsaved_changes_are_asked_about_before_opening(tmp_path, answer, opens,
     assert (tmp_path / "first.sward").exists() == bool(saves)
 
 
-def test_autosave_writes_only_unsaved_work_and_recovers_it(tmp_path):
-    projects, history, dialogs, opened, state = actions(tmp_path, clean=True)
-    settings = DictSettings()
-    autosave = Autosave(tmp_path / "auto", projects, history, dialogs, settings)
+def test_autosave_writes_only_unsaved_work(tmp_path):
+    projects, history, dialogs, _, state = actions(tmp_path, clean=True)
+    autosave = Autosave(tmp_path / "auto", projects, history, dialogs, name="a")
     assert not autosave.save_now() and not autosave.path.exists()
     history.isClean.return_value = False
     state["doc"].density = 0.45
-    assert autosave.save_now() and autosave.path.exists()
+    assert autosave.save_now() and load_project(autosave.path).density == pytest.approx(0.45)
+    autosave.close()
+    assert list((tmp_path / "auto").iterdir()) == []  # a normal close leaves nothing
+
+
+def test_a_running_designers_autosave_is_not_taken_by_another(tmp_path):
+    first, history, dialogs, _, _ = actions(tmp_path, clean=False)
+    a = Autosave(tmp_path, first, history, dialogs, name="a")
+    assert a.save_now()
+    second, history2, dialogs2, opened, _ = actions(tmp_path, clean=True)
+    b = Autosave(tmp_path, second, history2, dialogs2, name="b")
+    assert not b.recover_if_any()  # a still runs: its lock is held
+    dialogs2.ask_yes.assert_not_called()
+    assert a.path.exists() and opened == []
+
+
+CRASHING_DESIGNER = """
+import sys, time
+from unittest.mock import MagicMock
+from app.autosave import Autosave
+from app.scenes import get_scene
+doc = get_scene("patch-grid").document()
+doc.density = 0.45
+projects = MagicMock()
+projects.document.return_value = doc
+projects.path = sys.argv[2] if len(sys.argv) > 2 else None
+history = MagicMock()
+history.isClean.return_value = False
+Autosave(sys.argv[1], projects, history, MagicMock(), name="crashed").save_now()
+print("saved", flush=True)
+time.sleep(120)
+"""
+
+
+def test_work_autosaved_by_a_designer_killed_with_sigkill_is_recovered(tmp_path):
+    import signal
+    import subprocess
+    import sys
+
+    designer = subprocess.Popen(
+        [sys.executable, "-c", CRASHING_DESIGNER, str(tmp_path)], stdout=subprocess.PIPE, text=True
+    )
+    assert designer.stdout.readline() == "saved\n"
+    designer.send_signal(signal.SIGKILL)
+    designer.wait()
+    designer.stdout.close()
+    projects, history, dialogs, opened, _ = actions(tmp_path, clean=True)
     dialogs.ask_yes.return_value = True
-    assert autosave.recover_if_any()
-    assert opened[-1].density == pytest.approx(0.45)
+    history.isClean.return_value = False  # once recovered, the work is unsaved here
+    after = Autosave(tmp_path, projects, history, dialogs, name="next")
+    assert after.recover_if_any()
+    assert opened[-1].density == pytest.approx(0.45)  # nothing lost
     history.resetClean.assert_called_once()
-    autosave.discard()
-    assert not autosave.path.exists() and not autosave.recover_if_any()
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["autosave-next.json", "autosave-next.lock", "autosave-next.sward"]
+
+
+def test_recovery_never_offers_work_older_than_the_saved_file(tmp_path):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    project = tmp_path / "mine.sward"
+    designer = subprocess.Popen(
+        [sys.executable, "-c", CRASHING_DESIGNER, str(tmp_path), str(project)],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    assert designer.stdout.readline() == "saved\n"
+    designer.send_signal(signal.SIGKILL)
+    designer.wait()
+    designer.stdout.close()
+    save_project(project, get_scene("patch-grid").document())  # saved after the autosave
+    later = time.time() + 5
+    os.utime(project, (later, later))
+    projects, history, dialogs, opened, _ = actions(tmp_path, clean=True)
+    assert not Autosave(tmp_path, projects, history, dialogs, name="b").recover_if_any()
+    dialogs.ask_yes.assert_not_called()
+    assert opened == [] and not (tmp_path / "autosave-crashed.sward").exists()
 
 
 def test_a_declined_recovery_removes_the_autosave(tmp_path):
-    projects, history, dialogs, opened, _ = actions(tmp_path, clean=False)
-    autosave = Autosave(tmp_path, projects, history, dialogs, DictSettings())
-    autosave.save_now()
+    import subprocess
+    import sys
+
+    designer = subprocess.Popen(
+        [sys.executable, "-c", CRASHING_DESIGNER, str(tmp_path)], stdout=subprocess.PIPE, text=True
+    )
+    assert designer.stdout.readline() == "saved\n"
+    designer.kill()
+    designer.wait()
+    designer.stdout.close()
+    projects, history, dialogs, opened, _ = actions(tmp_path, clean=True)
     dialogs.ask_yes.return_value = False
-    assert not autosave.recover_if_any()
-    assert opened == [] and not autosave.path.exists()
+    assert not Autosave(tmp_path, projects, history, dialogs, name="b").recover_if_any()
+    assert opened == [] and not (tmp_path / "autosave-crashed.sward").exists()
 
 
 # -- map files --------------------------------------------------------------------------------
@@ -223,7 +304,7 @@ def test_a_raw_import_asks_for_its_layout_and_a_cancel_changes_nothing(tmp_path)
 
 def test_a_save_removes_the_autosave_so_recovery_never_offers_older_work(tmp_path):
     projects, history, dialogs, _, state = actions(tmp_path, clean=False)
-    autosave = Autosave(tmp_path / "auto", projects, history, dialogs, DictSettings())
+    autosave = Autosave(tmp_path / "auto", projects, history, dialogs, name="a")
     projects.saved = autosave.discard
     state["doc"].density = 0.3
     assert autosave.save_now() and autosave.path.exists()
