@@ -21,9 +21,13 @@ from pathlib import Path
 import numpy as np
 
 PROBE = """
-import json, resource, sys, time
+import json, sys, time
 from core.project_file import ProjectError, load_project
-base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+def hwm():  # peak resident memory of this process image, kB (ru_maxrss survives exec)
+    for line in open("/proc/self/status"):
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1])
+base = hwm()
 start = time.perf_counter()
 try:
     doc = load_project(sys.argv[1])
@@ -31,7 +35,7 @@ try:
 except ProjectError as exc:
     outcome, size = "refused: " + str(exc)[-60:], 0
 took = time.perf_counter() - start
-peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+peak = hwm()
 print(json.dumps({"s": took, "peak_mb": peak / 1024, "base_mb": base / 1024,
                   "outcome": outcome, "maps_mb": size / 2**20}))
 """
