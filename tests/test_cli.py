@@ -167,3 +167,20 @@ def test_negative_coordinates_work_as_written(tmp_path):
     assert json.loads(st.read_text())["camera"] == "custom"
     with Image.open(out) as image:
         assert coverage(np.asarray(image.convert("RGB"))) > 0.1  # it looks at the grass
+
+
+def test_a_malformed_project_is_one_line_and_exit_2(tmp_path):
+    import zipfile
+
+    path = tmp_path / "p.sward"
+    assert sward("new", str(path), "--scene", "patch-grid").returncode == 0
+    with zipfile.ZipFile(path) as z:
+        data, maps = json.loads(z.read("project.json")), z.read("maps.npz")
+    data["cameras"][data["default_camera"]]["near"] = -1.0
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("project.json", json.dumps(data))
+        z.writestr("maps.npz", maps)
+    r = sward("render", "--project", str(path), "--out", str(tmp_path / "x.png"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "p.sward" in lines[0] and ".near" in lines[0], lines

@@ -152,16 +152,47 @@ def test_project_saved_and_reopened_restores_the_parameters(window, qtbot, tmp_p
 
 
 def test_a_corrupt_project_gives_a_message_and_keeps_the_open_one(window, tmp_path, monkeypatch):
+    import json
+    import os
+    import zipfile
+
     from PySide6.QtWidgets import QMessageBox
 
-    bad = tmp_path / "broken.sward"
-    bad.write_bytes(b"PK\x03\x04 broken")
+    from core.project_file import save_project
+
+    good = tmp_path / "good.sward"
+    save_project(good, window.document)
+    with zipfile.ZipFile(good) as z:
+        data, maps = json.loads(z.read("project.json")), z.read("maps.npz")
+
+    def variant(name, change):
+        d = json.loads(json.dumps(data))
+        change(d)
+        with zipfile.ZipFile(tmp_path / name, "w") as z:
+            z.writestr("project.json", json.dumps(d))
+            z.writestr("maps.npz", maps)
+        return tmp_path / name
+
+    bad = [tmp_path / "broken.sward"]
+    bad[0].write_bytes(b"PK\x03\x04 broken")
+    bad.append(variant("nocolumns.sward", lambda d: d["terrain"].update(columns=0)))
+    bad.append(variant("cameras.sward", lambda d: d.update(cameras=7)))
+    os.mkfifo(tmp_path / "pipe.sward")
+    bad.append(tmp_path / "pipe.sward")
     messages = []
     monkeypatch.setattr(QMessageBox, "warning", lambda parent, title, text: messages.append(text))
-    before = (window.document.name, window.document.params(0), window.document.density)
-    assert not window.projects.open(bad)
-    assert len(messages) == 1 and "broken.sward" in messages[0]
-    assert (window.document.name, window.document.params(0), window.document.density) == before
+    window.panel.param("density").setValue(0.35)  # unsaved work in the open project
+    before = window.document
+    saved = tmp_path / "before.sward"
+    save_project(saved, before)
+    for path in bad:
+        assert not window.projects.open(path)
+        assert path.name in messages[-1] and "\n" not in messages[-1]
+        assert window.document is before and window.windowTitle().startswith("Sward — patch")
+    assert len(messages) == len(bad)
+    from core.project_file import load_project
+
+    assert load_project(saved).same_as(window.document)  # nothing of it changed
 
 
 def test_closing_with_unsaved_changes_asks_and_cancel_keeps_the_window(window, monkeypatch):
