@@ -113,8 +113,63 @@ def files() -> list[dict]:
     return rows
 
 
+BAD_VALUES = ["text", [], {}, None, True, -1, 0, 0.5, 1e308, 10**12, -1e9, [1, 2, 3, 4, 5]]
+
+
+def corpus() -> dict:
+    """Every field of a valid project given every bad value, loaded in one process: how many
+    were refused, the slowest case, and the process's peak memory for the whole corpus."""
+    import time
+
+    from app.scenes import get_scene
+    from core.project_file import ProjectError, load_project, save_project
+
+    def leaves(value, path=()):
+        if isinstance(value, dict):
+            for k, v in value.items():
+                yield from leaves(v, (*path, k))
+        elif (
+            isinstance(value, list) and value and not all(isinstance(v, int | float) for v in value)
+        ):
+            for i, v in enumerate(value):
+                yield from leaves(v, (*path, i))
+        else:
+            yield path
+
+    counts = {"refused": 0, "loaded": 0}
+    slowest = 0.0
+    with tempfile.TemporaryDirectory() as tmp:
+        good = Path(tmp) / "good.sward"
+        save_project(good, get_scene("meadow").document())
+        with zipfile.ZipFile(good) as z:
+            data, maps = json.loads(z.read("project.json")), z.read("maps.npz")
+        for where in leaves(data):
+            for value in BAD_VALUES:
+                variant = json.loads(json.dumps(data))
+                node = variant
+                for key in where[:-1]:
+                    node = node[key]
+                node[where[-1]] = value
+                path = Path(tmp) / "v.sward"
+                with zipfile.ZipFile(path, "w") as z:
+                    z.writestr("project.json", json.dumps(variant))
+                    z.writestr("maps.npz", maps)
+                start = time.perf_counter()
+                try:
+                    load_project(path)
+                    counts["loaded"] += 1
+                except ProjectError:
+                    counts["refused"] += 1
+                slowest = max(slowest, time.perf_counter() - start)
+    with open("/proc/self/status") as status:
+        peak = next(int(line.split()[1]) for line in status if line.startswith("VmHWM:"))
+    return {"name": "field_corpus", **counts, "slowest_s": slowest, "process_peak_mb": peak / 1024}
+
+
 def run() -> list[dict]:
-    return files()
+    rows = files()
+    rows.append({k: float(v) if isinstance(v, int) else v for k, v in corpus().items()})
+    return rows
 
 
 if __name__ == "__main__":
