@@ -199,6 +199,18 @@ def test_zip_and_npz_tricks_are_refused_before_reading_much(good, tmp_path):
         load_project(deep)
 
 
+def test_an_encrypted_member_is_refused_before_reading(good, tmp_path):
+    raw = bytearray(good[0])
+    with zipfile.ZipFile(io.BytesIO(good[0])) as z:
+        at = z.start_dir  # the central directory; its first entry is project.json's
+    assert raw[at : at + 4] == b"PK\x01\x02"
+    raw[at + 8] |= 0x01  # its "encrypted" flag
+    path = tmp_path / "locked.sward"
+    path.write_bytes(bytes(raw))
+    with pytest.raises(ProjectError, match="project.json is encrypted"):
+        load_project(path)
+
+
 def test_only_regular_files_are_read(tmp_path):
     fifo = tmp_path / "pipe.sward"
     os.mkfifo(fifo)
