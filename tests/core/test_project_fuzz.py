@@ -207,7 +207,7 @@ def test_an_encrypted_member_is_refused_before_reading(good, tmp_path):
     raw[at + 8] |= 0x01  # its "encrypted" flag
     path = tmp_path / "locked.sward"
     path.write_bytes(bytes(raw))
-    with pytest.raises(ProjectError, match="project.json is encrypted"):
+    with pytest.raises(ProjectError, match=r"project\.json is encrypted"):
         load_project(path)
 
 
