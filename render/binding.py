@@ -1,38 +1,24 @@
 """The one binding from the document (core/document.py) to a frame pipeline: it synchronises
 the pipeline fully when attached and then follows the document's events, so nothing else copies
-document state into the renderer (the command line, the tests, the benchmarks and the designer's
-viewport all draw through it)."""
+document state into the renderer (the command line, the tests, the benchmarks and the render
+processes behind the designer's viewport all draw through it). The design maps need no event
+here: their GL mirror uploads each edited rectangle at the next frame (render/design_maps.py)."""
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Callable
-
 from core.document import Document
-from core.params import PatchParams
-from core.patch import GrassPatch, generate_patch
+from core.lighting import Lighting
+from core.lod import LodConfig
+from core.params import PatchParams, SliceParams
+from core.patch import generate_patch
+from core.terrain import Terrain
 from render.frame import FramePipeline
-
-# asks for grass type i's patch to be made (off the window's thread); None: made here, at once
-PatchRequest = Callable[[int, PatchParams], None]
 
 
 class DocumentBinding:
-    def __init__(
-        self,
-        pipeline: FramePipeline,
-        document: Document,
-        request_patch: PatchRequest | None = None,
-        current: Callable[[], contextlib.AbstractContextManager] | None = None,
-        changed: Callable[[], None] | None = None,
-    ) -> None:
-        """`current` makes the pipeline's GL context current around each change (the viewport's
-        makeCurrent / doneCurrent); `changed` is called after each (a new frame is due)."""
+    def __init__(self, pipeline: FramePipeline, document: Document) -> None:
         self.pipeline = pipeline
         self.document = document
-        self._request = request_patch
-        self.current = current or contextlib.nullcontext
-        self.changed = changed or (lambda: None)
         self._handlers = {
             "params": self._on_params,
             "lod": self._on_lod,
@@ -41,13 +27,9 @@ class DocumentBinding:
             "light": self._on_light,
             "terrain": self._on_terrain,
         }
-        with self.current():
-            self._fully_synchronize()
+        self._fully_synchronize()
         for name, handler in self._handlers.items():
             getattr(document.events, name).connect(handler)
-        # the map textures upload their dirty rectangles at the next frame by themselves
-        # (render/design_maps.py); an edit, an undo or an import only needs that frame
-        document.maps.changed.connect(self._on_maps_changed)
 
     def _fully_synchronize(self) -> None:
         d, p = self.document, self.pipeline
@@ -59,56 +41,27 @@ class DocumentBinding:
         p.lighting = d.light
         p.set_density(d.density)
         for index, grass in enumerate(d.grass_types):
-            self._patch_for(index, grass.params)
-
-    def _patch_for(self, index: int, params: PatchParams) -> None:
-        if self._request is None:
-            self.pipeline.set_patch(index, generate_patch(params))
-        else:
-            self._request(index, params)
-
-    def set_patch(self, index: int, patch: GrassPatch) -> None:
-        """A patch made elsewhere for grass type `index` (the designer's patch builder)."""
-        if patch.params != self.document.params(index):
-            return  # made for parameters the document no longer has
-        with self.current():
-            self.pipeline.set_patch(index, patch)
-        self.changed()
+            p.set_patch(index, generate_patch(grass.params))
 
     def detach(self) -> None:
         for name, handler in self._handlers.items():
             getattr(self.document.events, name).disconnect(handler)
-        self.document.maps.changed.disconnect(self._on_maps_changed)
 
     # -- events ------------------------------------------------------------------------------
-    def _apply(self, fn: Callable[[], object]) -> None:
-        with self.current():
-            fn()
-        self.changed()
-
     def _on_params(self, index: int, params: PatchParams) -> None:
-        if self._request is not None:
-            self._request(index, params)
-        else:
-            self._apply(lambda: self.pipeline.set_patch(index, generate_patch(params)))
+        self.pipeline.set_patch(index, generate_patch(params))
 
-    def _on_lod(self, index: int, lod) -> None:
-        self._apply(lambda: self.pipeline.set_lod(index, lod))
+    def _on_lod(self, index: int, lod: LodConfig) -> None:
+        self.pipeline.set_lod(index, lod)
 
     def _on_density(self, density: float) -> None:
-        self._apply(lambda: self.pipeline.set_density(density))
+        self.pipeline.set_density(density)
 
-    def _on_slices(self, slices) -> None:
-        self._apply(lambda: self.pipeline.set_slice_params(slices))
+    def _on_slices(self, slices: SliceParams) -> None:
+        self.pipeline.set_slice_params(slices)
 
-    def _on_light(self, light) -> None:
-        def set_light() -> None:
-            self.pipeline.lighting = light
+    def _on_light(self, light: Lighting) -> None:
+        self.pipeline.lighting = light
 
-        self._apply(set_light)
-
-    def _on_maps_changed(self, _name: str, _rect) -> None:
-        self.changed()
-
-    def _on_terrain(self, terrain) -> None:
-        self._apply(lambda: self.pipeline.set_terrain(terrain))
+    def _on_terrain(self, terrain: Terrain) -> None:
+        self.pipeline.set_terrain(terrain)
