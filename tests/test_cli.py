@@ -10,6 +10,7 @@ import pytest
 from PIL import Image
 
 from tests.conftest import coverage
+from tests.project_files import project_parts, write_project
 
 
 def sward(*args, env=None):
@@ -170,16 +171,12 @@ def test_negative_coordinates_work_as_written(tmp_path):
 
 
 def test_a_malformed_project_is_one_line_and_exit_2(tmp_path):
-    import zipfile
 
     path = tmp_path / "p.sward"
     assert sward("new", str(path), "--scene", "patch-grid").returncode == 0
-    with zipfile.ZipFile(path) as z:
-        data, maps = json.loads(z.read("project.json")), z.read("maps.npz")
+    data, maps = project_parts(path)
     data["cameras"][data["default_camera"]]["near"] = -1.0
-    with zipfile.ZipFile(path, "w") as z:
-        z.writestr("project.json", json.dumps(data))
-        z.writestr("maps.npz", maps)
+    write_project(path, data, maps)
     r = sward("render", "--project", str(path), "--out", str(tmp_path / "x.png"))
     assert r.returncode == 2 and "Traceback" not in r.stderr
     lines = r.stderr.strip().splitlines()

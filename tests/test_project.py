@@ -2,8 +2,6 @@
 naming them; a failed save leaves the old file as it was."""
 
 import dataclasses
-import json
-import zipfile
 
 import numpy as np
 import pytest
@@ -13,6 +11,7 @@ from core import project_file
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.project_file import ProjectError, load_project, save_project
+from tests.project_files import project_parts, variant
 
 SIZE = (160, 100)
 
@@ -62,21 +61,13 @@ def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
     cases["truncated.sward"] = good.read_bytes()[: len(good.read_bytes()) // 2]
     for name, data in cases.items():
         (tmp_path / name).write_bytes(data)
-    with zipfile.ZipFile(good) as z:
-        doc = json.loads(z.read("project.json"))
-        maps = z.read("maps.npz")
-
-    def variant(name, change):
-        d = json.loads(json.dumps(doc))
-        change(d)
-        with zipfile.ZipFile(tmp_path / name, "w") as z:
-            z.writestr("project.json", json.dumps(d))
-            z.writestr("maps.npz", maps)
-
-    variant("future.sward", lambda d: d.update(version=99))
-    variant("badparam.sward", lambda d: d["params"].update(blade_count=-5))
-    variant("badlight.sward", lambda d: d.update(light={"sun_elevation": 400}))
-    variant("nolod.sward", lambda d: d.pop("lod"))
+    data, maps = project_parts(good)
+    variant(tmp_path / "future.sward", data, maps, lambda d: d.update(version=99))
+    variant(tmp_path / "badparam.sward", data, maps, lambda d: d["params"].update(blade_count=-5))
+    variant(
+        tmp_path / "badlight.sward", data, maps, lambda d: d.update(light={"sun_elevation": 400})
+    )
+    variant(tmp_path / "nolod.sward", data, maps, lambda d: d.pop("lod"))
     expected = {
         "text.sward": "not a zip file",
         "truncated.sward": "",

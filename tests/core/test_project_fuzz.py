@@ -16,6 +16,8 @@ import pytest
 from app.scenes import get_scene
 from core.document import Document
 from core.project_file import ProjectError, load_project, save_project
+from tests.project_files import leaves, project_parts, replaced
+from tests.project_files import write_project as write
 
 BAD_VALUES = ["text", [], {}, None, True, -1, 0, 1e308, 10**12, -1e9, [1, 2, 3, 4, 5]]
 
@@ -28,8 +30,7 @@ def good(tmp_path_factory):
     scene = dataclasses.replace(scene, map_size=(16, 16))
     path = folder / "good.sward"
     save_project(path, scene.document())
-    with zipfile.ZipFile(path) as z:
-        return path.read_bytes(), json.loads(z.read("project.json")), z.read("maps.npz")
+    return (path.read_bytes(), *project_parts(path))
 
 
 def outcome(path):
@@ -45,32 +46,6 @@ def outcome(path):
     doc.camera()
     doc.prop_boxes()
     return "loaded"
-
-
-def write(path, data: dict, maps: bytes, **zip_kwargs) -> None:
-    with zipfile.ZipFile(path, "w", **zip_kwargs) as z:
-        z.writestr("project.json", json.dumps(data))
-        z.writestr("maps.npz", maps)
-
-
-def leaves(value, path=()):
-    if isinstance(value, dict):
-        for k, v in value.items():
-            yield from leaves(v, (*path, k))
-    elif isinstance(value, list) and value and not all(isinstance(v, int | float) for v in value):
-        for i, v in enumerate(value):
-            yield from leaves(v, (*path, i))
-    else:
-        yield path
-
-
-def replaced(data, where, value):
-    copy = json.loads(json.dumps(data))
-    node = copy
-    for key in where[:-1]:
-        node = node[key]
-    node[where[-1]] = value
-    return copy
 
 
 def test_truncated_and_bit_flipped_files_are_refused_or_load(good, tmp_path):

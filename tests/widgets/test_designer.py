@@ -152,31 +152,24 @@ def test_project_saved_and_reopened_restores_the_parameters(window, qtbot, tmp_p
 
 
 def test_a_corrupt_project_gives_a_message_and_keeps_the_open_one(window, tmp_path, monkeypatch):
-    import json
     import os
-    import zipfile
 
     from PySide6.QtWidgets import QMessageBox
 
     from core.project_file import save_project
+    from tests.project_files import project_parts, variant
 
     good = tmp_path / "good.sward"
     save_project(good, window.document)
-    with zipfile.ZipFile(good) as z:
-        data, maps = json.loads(z.read("project.json")), z.read("maps.npz")
-
-    def variant(name, change):
-        d = json.loads(json.dumps(data))
-        change(d)
-        with zipfile.ZipFile(tmp_path / name, "w") as z:
-            z.writestr("project.json", json.dumps(d))
-            z.writestr("maps.npz", maps)
-        return tmp_path / name
+    data, maps = project_parts(good)
 
     bad = [tmp_path / "broken.sward"]
     bad[0].write_bytes(b"PK\x03\x04 broken")
-    bad.append(variant("nocolumns.sward", lambda d: d["terrain"].update(columns=0)))
-    bad.append(variant("cameras.sward", lambda d: d.update(cameras=7)))
+    change = {
+        "nocolumns": lambda d: d["terrain"].update(columns=0),
+        "cameras": lambda d: d.update(cameras=7),
+    }
+    bad += [variant(tmp_path / f"{name}.sward", data, maps, fn) for name, fn in change.items()]
     os.mkfifo(tmp_path / "pipe.sward")
     bad.append(tmp_path / "pipe.sward")
     messages = []
