@@ -1,7 +1,9 @@
 """The designer's interactive frames: the default scene (meadow, default camera, 950 × 720 —
 the viewport of a 1200 × 760 window) drawn at full quality and as the preview the viewport
 draws while the camera or the brush moves (half resolution, no MSAA), and the instances the
-bare-cell skipping saves. Medians of several frames; compare the ratio, not the times.
+bare-cell skipping saves. Medians of several frames; compare the ratio, not the times. The full
+frame is also compared with its stored reference (quarter-resolution FLIP): the volume pass's
+speed-ups were meant to keep the picture.
 
 Run: `sward bench --suite preview --out results.json`.
 """
@@ -11,11 +13,14 @@ from __future__ import annotations
 import statistics
 
 SIZE = (950, 720)
+# the frame as it was before the volume pass was made faster (tests/render/references.py)
+REFERENCE = "meadow-default-lod-950x720"
 
 
 def preview(runs: int = 3) -> list[dict]:
     from app.scenes import get_scene
     from render.headless import HeadlessRenderer
+    from benchmarks import references
 
     doc = get_scene("meadow").document()
     renderer = HeadlessRenderer(doc)
@@ -30,14 +35,16 @@ def preview(runs: int = 3) -> list[dict]:
             name = f"meadow_{'preview' if preview else 'full'}{'' if skip else '_no_skip'}"
             times[name] = statistics.median(f.t_a_ms for f in frames)
             last = frames[-1]
-            rows.append(
-                {
-                    "name": name,
-                    "median_ms": times[name],
-                    "t_v_ms": statistics.median(f.t_v_ms for f in frames),
-                    "instances": last.c_g + last.c_v + last.c_i,
-                }
-            )
+            row = {
+                "name": name,
+                "median_ms": times[name],
+                "t_v_ms": statistics.median(f.t_v_ms for f in frames),
+                "instances": last.c_g + last.c_v + last.c_i,
+            }
+            if skip and not preview:  # the frame the stored reference holds
+                image, _ = renderer.render(camera, SIZE, measure=False)
+                row["flip_quarter_vs_reference"] = references.moved(references.by_name(REFERENCE), image)
+            rows.append(row)
     rows.append(
         {
             "name": "preview_speedup",

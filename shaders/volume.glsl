@@ -169,7 +169,9 @@ void main() {
         vec2 duv = design_uv(v_config, h.xz);
         // eqs. 6.16-6.18: shift the lookup by the ground under the hit; outside the grass: none
         float y = h.y - (ground_height(duv) - v_ground.x);
-        if (y < 0.0 || y > u_height) {
+        // under the ground the ray is hidden by the ground drawn before: nothing after counts
+        if (y < 0.0) break;
+        if (y > u_height) {
             if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
             continue;
         }
