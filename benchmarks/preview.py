@@ -19,8 +19,8 @@ REFERENCE = "meadow-default-lod-950x720"
 
 def preview(runs: int = 3) -> list[dict]:
     from app.scenes import get_scene
-    from render.headless import HeadlessRenderer
     from benchmarks import references
+    from render.headless import HeadlessRenderer
 
     doc = get_scene("meadow").document()
     renderer = HeadlessRenderer(doc)

@@ -10,7 +10,6 @@ import pytest
 from benchmarks import references
 
 
-
 @pytest.mark.parametrize("case", references.CASES, ids=lambda c: c.name)
 def test_frame_matches_its_stored_reference(ctx, case):
     image = references.render(case, ctx)
