@@ -3,8 +3,11 @@
 Vertical slices: N slabs across x and N across z. Each slab [i/N, (i+1)/N] is drawn between two
 clip planes by an orthographic camera looking along the axis, onto an image whose u runs along
 the other horizontal axis and v up the patch height. The horizontal slice: the whole patch from
-above. The patch is drawn 3 × 3 times (its neighbours too), so blades of the next tile that lean
-into the square are captured and the slices tile seamlessly like the geometry does.
+above. The patch's neighbouring tiles are drawn too, so blades of the next tile that lean into the
+square are captured and the slices tile seamlessly like the geometry does; but each slab draws
+only the blades that can reach it (blades sorted along the slab's axis, one run of indices per
+tile offset), not the whole patch nine times, which made conversion cost 9× the patch's vertices
+per slice.
 
 Every slice keeps: albedo + alpha, patch-space normal and density threshold. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
 z = 0 for the horizontal slice.
@@ -13,7 +16,7 @@ z = 0 for the horizontal slice.
 from __future__ import annotations
 
 from collections.abc import Generator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import moderngl
 import numpy as np
@@ -44,11 +47,10 @@ class SlicedPatch:
     height: float
 
 
-def _neighbours() -> np.ndarray:
-    inst = np.zeros(9, dtype=INSTANCE_DTYPE)
-    ox, oz = np.meshgrid([-1.0, 0.0, 1.0], [-1.0, 0.0, 1.0], indexing="ij")
-    inst["origin"][:, 0] = ox.ravel()
-    inst["origin"][:, 1] = oz.ravel()
+def _tiles(offsets) -> np.ndarray:
+    """Instances of the patch at the given (x, z) tile offsets."""
+    inst = np.zeros(len(offsets), dtype=INSTANCE_DTYPE)
+    inst["origin"] = np.asarray(offsets, np.float32).reshape(-1, 2)
     inst["density"] = 1.0
     inst["lod"] = (2.0, 0.0)
     inst["size"] = 1.0
@@ -57,13 +59,43 @@ def _neighbours() -> np.ndarray:
     return inst
 
 
+@dataclass
+class _BladeOrder:
+    """The patch's blades sorted along one axis, with each blade's extent on it: a slab draws
+    only the run of blades that can reach it instead of the whole patch nine times."""
+
+    indices: np.ndarray  # the patch's triangle indices, blade after blade in this order
+    lo: np.ndarray  # (blades,) sorted: the lowest coordinate of each blade on the axis
+    reach: float  # the widest blade's extent on the axis
+    per_blade: int  # indices per blade
+    offset: int = 0  # where these indices start in the index buffer
+
+    @classmethod
+    def of(cls, patch: GrassPatch, axis: int) -> _BladeOrder:
+        n = patch.roots.shape[0]
+        pos = patch.vertices["position"][:, axis].reshape(n, -1)
+        lo, hi = pos.min(axis=1), pos.max(axis=1)
+        order = np.argsort(lo, kind="stable")
+        per_blade = patch.indices.size // max(n, 1)
+        indices = patch.indices.reshape(n, per_blade)[order].ravel()
+        reach = float((hi - lo).max()) if n else 0.0
+        return cls(np.ascontiguousarray(indices), lo[order], reach, per_blade)
+
+    def run(self, lo: float, hi: float) -> tuple[int, int]:
+        """(first index, index count) of the blades that may overlap [lo, hi]."""
+        a = int(np.searchsorted(self.lo, lo - self.reach, side="left"))
+        b = int(np.searchsorted(self.lo, hi, side="right"))
+        return self.offset + a * self.per_blade, max(b - a, 0) * self.per_blade
+
+
 class PatchConverter:
     alpha_ref = 0.1
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
         self.geometry = GeometryRenderer(ctx, program="slice_capture.glsl")
-        self.geometry.set_instances(_neighbours())
+        self.geometry.set_instances(_tiles([(0.0, 0.0)] * 9))
+        self._fbo: tuple[tuple[int, int], moderngl.Framebuffer, list] | None = None
 
     def convert(
         self, patch: GrassPatch, slices: int, size: tuple[int, int] = (256, 64), top_size: int = 128
@@ -80,25 +112,52 @@ class PatchConverter:
     ) -> Generator[tuple[int, int], None, SlicedPatch]:
         """The conversion one slice at a time: yields (done, total) after each capture and
         returns the SlicedPatch, so a window can keep responding between the captures."""
-        self.geometry.set_patch(patch)
+        by_x, by_z = _BladeOrder.of(patch, 0), _BladeOrder.of(patch, 2)
+        # one index buffer holds the blades in both orders: x first, z after it
+        by_z.offset = by_x.indices.size
+        self.geometry.set_patch(
+            replace(patch, indices=np.concatenate([by_x.indices, by_z.indices]))
+        )
         h = patch.height  # the tallest tip: slices and cuboids fit the grass, not the box
         total = 2 * slices + 1
-        x = yield from self._layers(slices, size, axis=0, height=h, done=0, total=total)
-        z = yield from self._layers(slices, size, axis=2, height=h, done=slices, total=total)
-        top = self._capture(
+        x = yield from self._layers(by_x, patch, slices, size, 0, h, done=0, total=total)
+        z = yield from self._layers(by_z, patch, slices, size, 2, h, done=slices, total=total)
+        # from above: the whole tile, and of each neighbour the blades that reach into the square
+        # (a run in x order for the tiles beside it along x and at the corners, in z order for
+        # those along z)
+        runs = [((0, by_x.indices.size), [(0, 0)])]
+        for ox, oz in [(ox, oz) for ox in (-1, 0, 1) for oz in (-1, 0, 1) if (ox, oz) != (0, 0)]:
+            order, t = (by_z, oz) if ox == 0 else (by_x, ox)
+            other = _extent(patch)[0 if ox == 0 else 1]
+            if _overlaps(other, ox if ox == 0 else oz):
+                runs.append((order.run(-t, 1.0 - t), [(ox, oz)]))
+        self._begin((top_size, top_size))
+        self._draw(
             orthographic(0.0, 1.0, -1.0, 0.0, 0.1, 10.0) @ look_at((0, h + 1.0, 0), (0, 0, 0)),
-            (top_size, top_size),
+            (0, 0, top_size, top_size),
             None,
             None,
+            runs,
         )
+        top = self._read((top_size, top_size))
         yield total, total
         top = SliceLayers(*(a[None] for a in top))
         return SlicedPatch(x=x, z=z, top=top, height=h)
 
     def _layers(
-        self, n: int, size: tuple[int, int], axis: int, height: float, done: int, total: int
+        self,
+        order: _BladeOrder,
+        patch: GrassPatch,
+        n: int,
+        size: tuple[int, int],
+        axis: int,
+        height: float,
+        done: int,
+        total: int,
     ) -> Generator[tuple[int, int], None, SliceLayers]:
-        parts = []
+        across = _extent(patch)[1 if axis == 0 else 0]  # the slice's u axis: z, or x
+        w, h = size
+        self._begin((w, h * n))  # the family's slabs side by side in one target, read once
         for i in range(n):
             lo, hi = i / n, (i + 1) / n
             plane_lo = np.zeros(4, np.float32)
@@ -107,22 +166,47 @@ class PatchConverter:
             plane_hi[axis], plane_hi[3] = -1.0, hi  # x <= hi
             if axis == 0:  # look along +x: screen right = +z
                 view = look_at((lo - 2.0, 0, 0), (lo, 0, 0))
-                proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
             else:  # look along -z from beyond the slab: screen right = +x
                 view = look_at((0, 0, hi + 2.0), (0, 0, hi))
-                proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
-            parts.append(self._capture(proj @ view, size, plane_lo, plane_hi))
+            proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
+            # per tile offset along the axis, the blades of that tile that reach the slab, drawn
+            # in the tiles beside it across the slice that reach into the square
+            runs = []
+            for t in (-1, 0, 1):
+                first, count = order.run(lo - t, hi - t)
+                if count:
+                    side = [s for s in (-1, 0, 1) if _overlaps(across, s)]
+                    runs.append(((first, count), [(t, s) if axis == 0 else (s, t) for s in side]))
+            self._draw(proj @ view, (0, i * h, w, h), plane_lo, plane_hi, runs)
             yield done + i + 1, total
-        return SliceLayers(*(np.stack(p) for p in zip(*parts, strict=True)))
+        color, normal, threshold = self._read((w, h * n))
+        return SliceLayers(
+            color.reshape(n, h, w, 4), normal.reshape(n, h, w, 3), threshold.reshape(n, h, w)
+        )
 
-    def _capture(self, view_proj, size, plane_lo, plane_hi):
-        ctx = self.ctx
-        targets = [ctx.texture(size, 4, dtype="f4") for _ in range(3)]
-        depth = ctx.depth_renderbuffer(size)
-        fbo = ctx.framebuffer(targets, depth)
+    def _target(self, size: tuple[int, int]) -> tuple[moderngl.Framebuffer, list]:
+        """One framebuffer per size, kept for the next capture."""
+        if self._fbo is None or self._fbo[0] != size:
+            self._release_target()
+            targets = [self.ctx.texture(size, 4, dtype="f4") for _ in range(3)]
+            depth = self.ctx.depth_renderbuffer(size)
+            self._fbo = (size, self.ctx.framebuffer(targets, depth), [depth, *targets])
+        return self._fbo[1], self._fbo[2][1:]
+
+    def _release_target(self) -> None:
+        if self._fbo is not None:
+            release_framebuffer(self._fbo[1], *self._fbo[2])
+            self._fbo = None
+
+    def _begin(self, size: tuple[int, int]) -> None:
+        fbo, _ = self._target(size)
         fbo.use()
-        ctx.viewport = (0, 0, *size)
         fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+
+    def _draw(self, view_proj, viewport, plane_lo, plane_hi, runs) -> None:
+        """Draw each (index run, tile offsets) between the clip planes into `viewport`."""
+        ctx = self.ctx
+        ctx.viewport = viewport
         prog = self.geometry.program
         keep = (0.0, 0.0, 0.0, 1.0)
         prog["u_clip_lo"].value = tuple(plane_lo) if plane_lo is not None else keep
@@ -133,16 +217,40 @@ class PatchConverter:
         ctx.disable_direct(0x809E)  # single-sampled targets: no alpha-to-coverage
         ctx.enable_direct(GL_CLIP_DISTANCE0)
         ctx.enable_direct(GL_CLIP_DISTANCE0 + 1)
-        self.geometry.draw()
+        for (first, count), tiles in runs:
+            if not tiles:
+                continue
+            self.geometry.instances.write(_tiles(tiles).tobytes())
+            self.geometry.vao.render(
+                moderngl.TRIANGLES, vertices=count, first=first, instances=len(tiles)
+            )
         self.geometry.finalize()
         ctx.disable_direct(GL_CLIP_DISTANCE0)
         ctx.disable_direct(GL_CLIP_DISTANCE0 + 1)
+
+    def _read(self, size: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Albedo + alpha, unit normal and threshold of the target, row 0 at the bottom."""
+        _, targets = self._target(size)
         w, h = size
         color = np.frombuffer(targets[0].read(), np.float32).reshape(h, w, 4).copy()
         normal = np.frombuffer(targets[1].read(), np.float32).reshape(h, w, 4)[..., :3] * 2 - 1
         data = np.frombuffer(targets[2].read(), np.float32).reshape(h, w, 4)
-        release_framebuffer(fbo, depth, *targets)
         return color, normal, data[..., 0].copy()
 
     def release(self) -> None:
+        self._release_target()
         self.geometry.release()
+
+
+def _extent(patch: GrassPatch) -> tuple[tuple[float, float], tuple[float, float]]:
+    """(x range, z range) of every vertex of the patch, in patch units."""
+    pos = patch.vertices["position"]
+    return (float(pos[:, 0].min()), float(pos[:, 0].max())), (
+        float(pos[:, 2].min()),
+        float(pos[:, 2].max()),
+    )
+
+
+def _overlaps(extent: tuple[float, float], offset: float) -> bool:
+    """Whether the patch moved by `offset` tiles reaches into the square [0, 1]."""
+    return extent[0] + offset < 1.0 and extent[1] + offset > 0.0

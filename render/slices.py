@@ -61,12 +61,8 @@ def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5)
     count = slice_levels(h, w)
     color_levels = stacked_slice_mips(layers.color, count, alpha_ref)
     data = canonical_data(layers)
-    chains = [
-        weighted_chain(data[i], mean_alpha_chain(layers.color[i, ..., 3], count)) for i in range(n)
-    ]
-    data_levels = [
-        np.concatenate(level, axis=0).astype(np.float32) for level in zip(*chains, strict=True)
-    ]
+    chain = weighted_chain(data, mean_alpha_chain(layers.color[..., 3], count))
+    data_levels = [level.reshape(-1, *level.shape[2:]) for level in chain]
     return LayerLevels(color_levels, data_levels, n, repeat_v=top)
 
 
