@@ -184,9 +184,9 @@ def weighted_chain(values: np.ndarray, alphas: list[np.ndarray]) -> list[np.ndar
 def mean_alpha_chain(alpha: np.ndarray, count: int) -> list[np.ndarray]:
     """The plain box-filtered alpha of `count` levels (the weights for weighted_chain); a
     leading stack axis is carried along."""
-    out = [np.asarray(alpha, dtype=np.float32)]
+    out: list[np.ndarray] = [np.asarray(alpha, dtype=np.float32)]
     while len(out) < count:
-        out.append((_sum4(out[-1][..., None]) * 0.25)[..., 0])
+        out.append((_sum4(out[-1][..., None]) * np.float32(0.25))[..., 0])
     return out
 
 
