@@ -116,9 +116,6 @@ class FramePipeline:
         """How the cells are drawn: a ViewMode (core/view_mode.py)."""
         self.mode = ViewMode.parse(mode)
         self._convert()
-        if self.mode != ViewMode.LOD:  # a single representation draws every cell again
-            for renderer in (self.geometry, self.volume, self.image):
-                renderer.set_instances(self._instances)
 
     def set_patch(self, index: int, patch: GrassPatch) -> None:
         """A new patch for one grass type (0: the first)."""
@@ -205,18 +202,19 @@ class FramePipeline:
 
     def set_terrain(self, terrain: Terrain) -> None:
         """Cells from a terrain's quadtree: every frame one traversal selects, culls and groups
-        them into macro-cells per LOD level (core/traversal.py)."""
-        self.set_instances(terrain.all_cells())
+        them into macro-cells per LOD level (core/traversal.py). Nothing is uploaded here: each
+        frame uploads the cells it draws (a 4096² terrain has 16.7 million cells, 940 MB as
+        instances, of which a frame draws a few thousand)."""
+        self._set_fixed(np.zeros(0, INSTANCE_DTYPE))
         self.terrain = terrain
+        self.ground.grass_rect = terrain.rect
 
     def set_instances(self, instances: np.ndarray) -> None:
         """A fixed set of cells, each classified by distance every frame (no quadtree)."""
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.terrain = None
-        self._instances = instances
-        for grass in self.grass_types:
-            grass.set_instances(instances)
+        self._set_fixed(instances)
         if instances.size:
             lo = instances["origin"]
             hi = lo + instances["size"]
@@ -226,6 +224,11 @@ class FramePipeline:
                 float(hi[:, 0].max()),
                 float(hi[:, 1].max()),
             )
+
+    def _set_fixed(self, instances: np.ndarray) -> None:
+        self._instances = instances
+        for grass in self.grass_types:
+            grass.set_instances(instances)
 
     def set_density(self, density: float) -> None:
         for grass in self.grass_types:
