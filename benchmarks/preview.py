@@ -43,7 +43,9 @@ def preview(runs: int = 3) -> list[dict]:
             }
             if skip and not preview:  # the frame the stored reference holds
                 image, _ = renderer.render(camera, SIZE, measure=False)
-                row["flip_quarter_vs_reference"] = references.moved(references.by_name(REFERENCE), image)
+                row["flip_quarter_vs_reference"] = references.moved(
+                    references.by_name(REFERENCE), image
+                )
             rows.append(row)
     rows.append(
         {

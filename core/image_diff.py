@@ -42,8 +42,3 @@ def flip(reference: np.ndarray, test: np.ndarray, factor: int = 1) -> tuple[floa
         np.ascontiguousarray(ref), np.ascontiguousarray(tst), "LDR", applyMagma=False
     )
     return float(mean), np.asarray(error)
-
-
-def quarter_flip(reference: np.ndarray, test: np.ndarray) -> float:
-    """Mean FLIP at quarter resolution: the figure the issues' image checks name."""
-    return flip(reference, test, QUARTER)[0]
