@@ -4,8 +4,6 @@ volumes, the volume cuboids' extrusion (min height, unplanarity) and the unplana
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 
@@ -25,21 +23,42 @@ def bilinear(heights: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return top * (1 - fy) + bottom * fy
 
 
-def _positions(cells: int, texels: int) -> np.ndarray:
-    """(cells, k) positions in 0 … 1 per cell: its two borders and every texel-centre line
-    between them (padded with the first border)."""
-    k = math.ceil(texels / cells) + 3
-    out = np.empty((cells, k))
-    v0 = np.arange(cells) / cells
-    out[:] = v0[:, None]
-    out[:, 1] = (np.arange(cells) + 1) / cells
-    first = np.ceil(v0 * texels - 0.5).astype(np.int64)  # first texel centre at or after v0
-    for extra in range(k - 2):
-        j = first + extra
-        c = (j + 0.5) / texels
-        inside = c <= out[:, 1]
-        out[inside, 2 + extra] = c[inside]
-    return out
+def bilinear_grid(heights: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """bilinear(heights, U, V) on the grid of every u × every v, (u.size, v.size): the same
+    arithmetic done separably, along u for each texel row and then along v."""
+    h, w = heights.shape
+    x = np.clip(np.asarray(u, np.float64) * w - 0.5, 0.0, w - 1)
+    y = np.clip(np.asarray(v, np.float64) * h - 0.5, 0.0, h - 1)
+    x0 = np.floor(x).astype(np.int64)
+    y0 = np.floor(y).astype(np.int64)
+    x1 = np.minimum(x0 + 1, w - 1)
+    y1 = np.minimum(y0 + 1, h - 1)
+    fx, fy = x - x0, y - y0
+    rows_needed = np.unique(np.concatenate([y0, y1]))
+    sub = heights[rows_needed]  # only the texel rows the v lines reach
+    along = sub[:, x0] * (1 - fx) + sub[:, x1] * fx  # (rows needed, u.size)
+    i0 = np.searchsorted(rows_needed, y0)
+    i1 = np.searchsorted(rows_needed, y1)
+    out = along[i0] * (1 - fy)[:, None] + along[i1] * fy[:, None]  # (v.size, u.size)
+    return out.T
+
+
+def _lines(cells: int, texels: int) -> tuple[np.ndarray, np.ndarray]:
+    """Along one axis, in 0 … 1: every cell border and every texel-centre line, sorted, and for
+    each cell the index of its first border in that list (the cell's samples run from there
+    to its second border, inclusive)."""
+    borders = np.arange(cells + 1) / cells
+    centres = (np.arange(texels) + 0.5) / texels
+    lines = np.unique(np.concatenate([borders, centres]))
+    return lines, np.searchsorted(lines, borders)
+
+
+def _block_extremes(values: np.ndarray, starts: np.ndarray, axis: int):
+    """Min and max of `values` over each inclusive run [starts[i], starts[i + 1]] on `axis`."""
+    lo = np.minimum.reduceat(values, starts[:-1], axis=axis)
+    hi = np.maximum.reduceat(values, starts[:-1], axis=axis)
+    ends = np.take(values, starts[1:], axis=axis)  # the second border, shared with the next cell
+    return np.minimum(lo, ends), np.maximum(hi, ends)
 
 
 def cell_ranges(
@@ -49,22 +68,26 @@ def cell_ranges(
 
     The bilinear surface is bilinear between texel-centre lines, so its extremes inside a cell
     lie where those lines and the cell's borders cross: sampling exactly there is exact (a tiny
-    margin covers float rounding)."""
+    margin covers float rounding). Those crossings form one grid for the whole terrain (every
+    cell border and texel-centre line on each axis), sampled once, a band of cell rows at a
+    time; each cell takes the extremes of its block of the grid."""
     h, w = heights.shape
-    px = _positions(columns, w)  # (columns, kx)
-    pz = _positions(rows, h)  # (rows, kz)
-    kx, kz = px.shape[1], pz.shape[1]
+    xs, x_starts = _lines(columns, w)
+    zs, z_starts = _lines(rows, h)
     lo = np.empty((columns, rows), np.float32)
     hi = np.empty((columns, rows), np.float32)
     margin = 1e-4 * max(scale, 1.0)
-    chunk = max(1, 2_000_000 // (columns * kx * kz))
-    for z0 in range(0, rows, chunk):
-        z1 = min(z0 + chunk, rows)
-        uu = np.broadcast_to(px[:, :, None, None], (columns, kx, z1 - z0, kz))
-        vv = np.broadcast_to(pz[None, None, z0:z1, :], (columns, kx, z1 - z0, kz))
-        s = bilinear(heights, uu, vv) * scale
-        lo[:, z0:z1] = s.min(axis=(1, 3)) - margin
-        hi[:, z0:z1] = s.max(axis=(1, 3)) + margin
+    band = max(1, 4_000_000 // max(xs.size * max(zs.size // rows, 1), 1))
+    for r0 in range(0, rows, band):
+        r1 = min(r0 + band, rows)
+        a, b = z_starts[r0], z_starts[r1]
+        # rounding to float32 keeps the order of values, so the extremes of the rounded samples
+        # are the rounded extremes (half the memory traffic for the reductions)
+        s = (bilinear_grid(heights, xs, zs[a : b + 1]) * scale).astype(np.float32)
+        x_lo, x_hi = _block_extremes(s, x_starts, axis=0)  # (columns, z lines)
+        starts = z_starts[r0 : r1 + 1] - a
+        lo[:, r0:r1] = _block_extremes(x_lo, starts, axis=1)[0].astype(np.float64) - margin
+        hi[:, r0:r1] = _block_extremes(x_hi, starts, axis=1)[1].astype(np.float64) + margin
     return lo, hi
 
 
