@@ -7,17 +7,20 @@ from __future__ import annotations
 import numpy as np
 
 
+def _texels(coord, size: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """GL_LINEAR with clamp-to-edge along one axis: the two texels around each coordinate in
+    0 … 1 (texel centres at (i + 0.5) / size) and the weight of the second."""
+    t = np.clip(np.asarray(coord, np.float64) * size - 0.5, 0.0, size - 1)
+    i0 = np.floor(t).astype(np.int64)
+    return i0, np.minimum(i0 + 1, size - 1), t - i0
+
+
 def bilinear(heights: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """heights (rows along v, columns along u) sampled at (u, v) in 0 … 1 like GL_LINEAR with
-    clamp-to-edge: texel centres at (i + 0.5) / size."""
+    clamp-to-edge."""
     h, w = heights.shape
-    x = np.clip(np.asarray(u, np.float64) * w - 0.5, 0.0, w - 1)
-    y = np.clip(np.asarray(v, np.float64) * h - 0.5, 0.0, h - 1)
-    x0 = np.floor(x).astype(np.int64)
-    y0 = np.floor(y).astype(np.int64)
-    x1 = np.minimum(x0 + 1, w - 1)
-    y1 = np.minimum(y0 + 1, h - 1)
-    fx, fy = x - x0, y - y0
+    x0, x1, fx = _texels(u, w)
+    y0, y1, fy = _texels(v, h)
     top = heights[y0, x0] * (1 - fx) + heights[y0, x1] * fx
     bottom = heights[y1, x0] * (1 - fx) + heights[y1, x1] * fx
     return top * (1 - fy) + bottom * fy
@@ -27,13 +30,8 @@ def bilinear_grid(heights: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarr
     """bilinear(heights, U, V) on the grid of every u × every v, (u.size, v.size): the same
     arithmetic done separably, along u for each texel row and then along v."""
     h, w = heights.shape
-    x = np.clip(np.asarray(u, np.float64) * w - 0.5, 0.0, w - 1)
-    y = np.clip(np.asarray(v, np.float64) * h - 0.5, 0.0, h - 1)
-    x0 = np.floor(x).astype(np.int64)
-    y0 = np.floor(y).astype(np.int64)
-    x1 = np.minimum(x0 + 1, w - 1)
-    y1 = np.minimum(y0 + 1, h - 1)
-    fx, fy = x - x0, y - y0
+    x0, x1, fx = _texels(u, w)
+    y0, y1, fy = _texels(v, h)
     rows_needed = np.unique(np.concatenate([y0, y1]))
     sub = heights[rows_needed]  # only the texel rows the v lines reach
     along = sub[:, x0] * (1 - fx) + sub[:, x1] * fx  # (rows needed, u.size)
