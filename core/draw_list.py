@@ -53,9 +53,8 @@ def draw_list(
     else:
         config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
     if terrain is not None:
-        parts = traverse(terrain, eye, config, frustum).levels
-        if occupancy is not None:
-            parts = [part[_grows(part, terrain, occupancy, channel)] for part in parts]
+        occupied = None if occupancy is None else occupancy.integral[channel]
+        parts = traverse(terrain, eye, config, frustum, occupied).levels
     elif mode == ViewMode.LOD:
         parts = lod_select(instances, eye, config)
     else:
@@ -67,10 +66,3 @@ def draw_list(
     for key, chunks in grouped.items():
         out.batches[key] = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
     return out
-
-
-def _grows(cells: np.ndarray, terrain: Terrain, occupancy: DensityOccupancy, channel: int):
-    ix = np.rint(cells["origin"][:, 0] - terrain.origin[0])
-    iz = np.rint(cells["origin"][:, 1] - terrain.origin[1])
-    sx, sz = np.rint(cells["size"][:, 0]), np.rint(cells["size"][:, 1])
-    return occupancy.occupied(channel, ix, iz, sx, sz)

@@ -1,80 +1,91 @@
-"""The LOD tests of the quadtree traversal (thesis 6.1.2, 6.2, 6.4.4), each a small function
-over the nodes of one tree level: it returns a (nodes × LOD levels) mask. A new kind of test is
-one more function here and one line in core/traversal.py."""
+"""The LOD tests of the quadtree traversal (thesis 6.1.2, 6.2, 6.4.4), each a small compiled
+function of one node and one LOD level (or pair of levels): the traversal (core/traversal.py)
+calls them per node inside its compiled walk. The per-level bounds they compare against are
+worked out once per frame into one table (`Levels.table`). A new kind of test is one more
+function here and one line in the walk.
+
+Compiled with numba: the per-frame traversal visits a few hundred nodes over a dozen tree
+levels, and numpy's per-call overhead (~50 array operations a level) cost 4-6 ms of it."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from core.lod import LodConfig
 
 MARGIN = 1e-4  # node-level distance decisions are conservative by this much; leaves decide
 
+# columns of Levels.table
+BEGIN, END, MACRO, MAX_UNPLANARITY, CORE_LO, CORE_HI, PAIR_LO, PAIR_HI, PAIR_LIMIT = range(9)
+
 
 @dataclass(frozen=True)
 class Levels:
-    """The LOD configuration as arrays, one entry per level."""
+    """The LOD configuration as one (levels × 9) float64 table: each level's range, macro-cell
+    limit and unplanarity limit, the zone where it alone draws (macro-cells), and for the pair
+    (t, t + 1) the distances within which a node may be shared by both."""
 
-    begin: np.ndarray
-    end: np.ndarray
-    macro: np.ndarray
-    max_unplanarity: np.ndarray
+    table: np.ndarray
 
     @classmethod
+    @functools.lru_cache(maxsize=32)  # per frame and grass type: configurations are few, frozen
     def of(cls, config: LodConfig) -> Levels:
         lv = config.levels
-        return cls(
-            np.array([x.begin for x in lv]),
-            np.array([np.inf if x.end is None else x.end for x in lv]),
-            np.array([x.macro for x in lv]),
-            np.array([np.inf if x.max_unplanarity is None else x.max_unplanarity for x in lv]),
-        )
+        begin = np.array([x.begin for x in lv], np.float64)
+        end = np.array([np.inf if x.end is None else x.end for x in lv])
+        macro = np.array([x.macro for x in lv], np.float64)
+        table = np.empty((len(lv), 9))
+        table[:, BEGIN] = begin
+        table[:, END] = end
+        table[:, MACRO] = macro
+        table[:, MAX_UNPLANARITY] = [
+            np.inf if x.max_unplanarity is None else x.max_unplanarity for x in lv
+        ]
+        # macro-cells (6.2): wholly in the level's own zone, where no neighbouring level draws
+        prev_end = np.concatenate([[-np.inf], end[:-1]])
+        next_begin = np.concatenate([begin[1:], [np.inf]])
+        table[:, CORE_LO] = np.maximum(begin, prev_end) + MARGIN
+        table[:, CORE_HI] = np.minimum(end, next_begin) - MARGIN
+        # a pair t, t+1: no cell back in level t-1, nor on in level t+2, both limits kept
+        table[:, PAIR_LO] = np.concatenate([[-np.inf], end[:-1] + MARGIN])
+        table[:, PAIR_HI] = np.concatenate([begin[2:] - MARGIN, [np.inf, np.inf]])[: len(lv)]
+        table[:, PAIR_LIMIT] = np.minimum(macro, np.concatenate([macro[1:], [0.0]]))
+        table.flags.writeable = False
+        return cls(table)
 
     @property
     def count(self) -> int:
-        return len(self.begin)
+        return self.table.shape[0]
 
 
-@dataclass(frozen=True)
-class Nodes:
-    """The nodes of one tree level still in play: the horizontal distance range from the eye
-    to their cell centres, their edge in cells and their ground's height range."""
-
-    dmin: np.ndarray  # (n, 1)
-    dmax: np.ndarray  # (n, 1)
-    span: int
-    y_lo: np.ndarray  # (n,)
-    y_hi: np.ndarray
+@numba.njit(cache=True)
+def distance(table, t, dmin, dmax) -> bool:
+    """Draw or split where the node reaches into level t's range; discard elsewhere. dmin and
+    dmax: the horizontal distances from the eye to the node's nearest and farthest cell centre."""
+    return dmax >= table[t, BEGIN] - MARGIN and dmin < table[t, END] + MARGIN
 
 
-def distance(nodes: Nodes, lv: Levels) -> np.ndarray:
-    """Draw or split where the node reaches into the level's range; discard elsewhere."""
-    return (nodes.dmax >= lv.begin - MARGIN) & (nodes.dmin < lv.end + MARGIN)
-
-
-def flat(nodes: Nodes, lv: Levels) -> np.ndarray:
+@numba.njit(cache=True)
+def flat(table, t, y_lo, y_hi) -> bool:
     """The unplanarity test (6.4.4): a node may be a macro-cell only on nearly flat ground."""
-    return (nodes.y_hi - nodes.y_lo)[:, None] <= lv.max_unplanarity
+    return (y_hi - y_lo) <= table[t, MAX_UNPLANARITY]
 
 
-def macro_cell(nodes: Nodes, lv: Levels) -> np.ndarray:
-    """The macro-cell test (6.2): no larger than the level's limit and wholly in its own zone,
-    where no neighbouring level draws."""
-    prev_end = np.concatenate([[-np.inf], lv.end[:-1]])
-    next_begin = np.concatenate([lv.begin[1:], [np.inf]])
-    core_lo = np.maximum(lv.begin, prev_end) + MARGIN
-    core_hi = np.minimum(lv.end, next_begin) - MARGIN
-    return (nodes.span <= lv.macro) & (nodes.dmin >= core_lo) & (nodes.dmax < core_hi)
+@numba.njit(cache=True)
+def macro_cell(table, t, dmin, dmax, span) -> bool:
+    """The macro-cell test (6.2): no larger than level t's limit (span: the node's edge in
+    cells) and wholly in its own zone, where no neighbouring level draws."""
+    return span <= table[t, MACRO] and dmin >= table[t, CORE_LO] and dmax < table[t, CORE_HI]
 
 
-def shared(nodes: Nodes, lv: Levels) -> np.ndarray:
-    """(nodes × level pairs t, t+1): a node within the reach of levels t and t+1 only and
-    within both macro-cell limits, drawn by both with one w (core/traversal.py)."""
-    if lv.count < 2:
-        return np.zeros((nodes.dmin.shape[0], 0), bool)
-    lo = np.concatenate([[-np.inf], lv.end[:-2] + MARGIN])  # no cell back in level t-1
-    hi = np.concatenate([lv.begin[2:] - MARGIN, [np.inf]])  # nor on in level t+2
-    limit = np.minimum(lv.macro[:-1], lv.macro[1:])
-    return (nodes.span <= limit) & (nodes.dmin >= lo) & (nodes.dmax < hi)
+@numba.njit(cache=True)
+def shared(table, t, dmin, dmax, span) -> bool:
+    """A node within the reach of levels t and t+1 only and within both macro-cell limits,
+    drawn by both with one w (core/traversal.py). Never for the last level."""
+    if t + 1 >= table.shape[0]:
+        return False
+    return span <= table[t, PAIR_LIMIT] and dmin >= table[t, PAIR_LO] and dmax < table[t, PAIR_HI]

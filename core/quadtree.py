@@ -31,8 +31,12 @@ def node_bound(columns: int, rows: int) -> int:
 class QuadTree:
     columns: int
     rows: int
-    y_min: tuple[np.ndarray, ...]  # per level, (nx, nz) float16: lowest ground in the node
-    y_max: tuple[np.ndarray, ...]  # per level, (nx, nz) float16: highest ground in the node
+    # all levels' ranges in one array each, level 0 first, each level (nx, nz) in C order:
+    # float16 bit patterns (uint16), so that the compiled traversal reads them directly
+    packed_min: np.ndarray
+    packed_max: np.ndarray
+    offsets: np.ndarray  # (depth + 1,) int64: where each level starts in the packed arrays
+    shapes: np.ndarray  # (depth, 2) int64: nodes per level along x and z
 
     @classmethod
     def build(
@@ -48,49 +52,60 @@ class QuadTree:
         hi = np.asarray(hi, np.float32)
         if lo.shape != (columns, rows) or hi.shape != (columns, rows):
             raise ValueError(f"cell height ranges must be {columns} × {rows} arrays")
-        mins, maxs = [lo], [hi]
-        while mins[-1].shape != (1, 1):
-            mins.append(_reduce(mins[-1], np.minimum, np.inf))
-            maxs.append(_reduce(maxs[-1], np.maximum, -np.inf))
-        # half floats, rounded outwards: the ranges stay conservative at half the memory
-        return cls(
+        shapes = [(columns, rows)]
+        while shapes[-1] != (1, 1):
+            nx, nz = shapes[-1]
+            shapes.append(((nx + 1) // 2, (nz + 1) // 2))
+        offsets = np.concatenate([[0], np.cumsum([nx * nz for nx, nz in shapes])]).astype(np.int64)
+        tree = cls(
             columns,
             rows,
-            tuple(_half(a, down=True) for a in mins),
-            tuple(_half(a, down=False) for a in maxs),
+            np.empty(offsets[-1], np.uint16),
+            np.empty(offsets[-1], np.uint16),
+            offsets,
+            np.array(shapes, np.int64),
+        )
+        # half floats, rounded outwards: the ranges stay conservative at half the memory
+        for level in range(len(shapes)):
+            tree.y_min[level][...] = _half(lo, down=True)
+            tree.y_max[level][...] = _half(hi, down=False)
+            if level + 1 < len(shapes):
+                lo = _reduce(lo, np.minimum, np.inf)
+                hi = _reduce(hi, np.maximum, -np.inf)
+        return tree
+
+    @property
+    def y_min(self) -> tuple[np.ndarray, ...]:
+        """Per level, (nx, nz) float16 views: the lowest ground in each node."""
+        return self._levels(self.packed_min)
+
+    @property
+    def y_max(self) -> tuple[np.ndarray, ...]:
+        """Per level, (nx, nz) float16 views: the highest ground in each node."""
+        return self._levels(self.packed_max)
+
+    def _levels(self, packed: np.ndarray) -> tuple[np.ndarray, ...]:
+        halves = packed.view(np.float16)
+        return tuple(
+            halves[self.offsets[k] : self.offsets[k + 1]].reshape(nx, nz)
+            for k, (nx, nz) in enumerate(self.shapes.tolist())
         )
 
     @property
     def depth(self) -> int:
-        return len(self.y_min)
+        return len(self.shapes)
 
     @property
     def node_count(self) -> int:
-        return int(sum(a.size for a in self.y_min))
+        return int(self.offsets[-1])
 
     @property
     def memory_bytes(self) -> int:
-        return int(sum(a.nbytes for a in self.y_min) + sum(a.nbytes for a in self.y_max))
+        return int(self.packed_min.nbytes + self.packed_max.nbytes)
 
     def shape(self, level: int) -> tuple[int, int]:
-        rows, columns = self.y_min[level].shape
-        return rows, columns
-
-    def extent(self, level: int, ix: np.ndarray, iz: np.ndarray):
-        """Cell ranges [x0, x1) × [z0, z1) of nodes (ix, iz) of a level, clipped at the edges."""
-        step = 1 << level
-        x0, z0 = ix * step, iz * step
-        return x0, z0, np.minimum(x0 + step, self.columns), np.minimum(z0 + step, self.rows)
-
-    def children(self, level: int, ix: np.ndarray, iz: np.ndarray):
-        """Indices (at level - 1) of the existing children of nodes (ix, iz) of `level`, and
-        for each child the position of its parent in the input."""
-        nx, nz = self.shape(level - 1)
-        cx = (2 * ix[:, None] + np.array([0, 1, 0, 1])).ravel()
-        cz = (2 * iz[:, None] + np.array([0, 0, 1, 1])).ravel()
-        parent = np.repeat(np.arange(ix.size), 4)
-        keep = (cx < nx) & (cz < nz)
-        return cx[keep], cz[keep], parent[keep]
+        nx, nz = self.shapes[level].tolist()
+        return nx, nz
 
 
 def _reduce(a: np.ndarray, op, fill: float) -> np.ndarray:

@@ -5,13 +5,26 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numba
 import numpy as np
 
 from core.grid import INSTANCE_DTYPE
 from core.heights import cell_ranges
 from core.lod import ALL_IN
 from core.quadtree import QuadTree
-from core.tiling import mirror_bits
+from core.tiling import mirror_sign, noise_map
+
+# A (macro-)cell to draw, one float64 row: first cell (x0, z0), size in cells, its ground's
+# height range, its LOD level, and (w, side) of eqs. 5.23-5.26. The traversal makes these.
+X0, Z0, SX, SZ, Y_LO, Y_HI, LEVEL, W, SIDE = range(9)
+# where each field of an instance lies in its 15 float32s
+_NAMES = ("origin", "density", "lod", "size", "mirror", "config", "ground")
+_FIELDS = INSTANCE_DTYPE.fields
+assert _FIELDS is not None and INSTANCE_DTYPE.itemsize == 15 * 4
+assert all(INSTANCE_DTYPE[name].base == np.float32 for name in _NAMES)
+_ORIGIN, _DENSITY, _LOD, _SIZE, _MIRROR, _CONFIG, _GROUND = (_FIELDS[n][1] // 4 for n in _NAMES)
+_NO_NOISE = np.zeros((1, 1, 2), np.float32)
+_NO_NOISE.flags.writeable = False  # read-only like noise_map's: one compiled type for both
 
 
 @dataclass(frozen=True, eq=False)
@@ -35,8 +48,9 @@ class Terrain:
             lo, hi = cell_ranges(self.heights, self.height_scale, self.columns, self.rows)
         else:
             lo = hi = np.zeros((self.columns, self.rows), np.float32)
-        object.__setattr__(self, "cell_min", lo)
-        object.__setattr__(self, "cell_max", hi)
+        # C order: the compiled traversal is compiled for that layout once
+        object.__setattr__(self, "cell_min", np.ascontiguousarray(lo, np.float32))
+        object.__setattr__(self, "cell_max", np.ascontiguousarray(hi, np.float32))
         object.__setattr__(self, "tree", QuadTree.build(self.columns, self.rows, lo, hi))
 
     @classmethod
@@ -47,33 +61,55 @@ class Terrain:
     def cells(self, ix, iz, sx=1, sz=1, ground=None) -> np.ndarray:
         """Instances of (macro-)cells starting at cell (ix, iz), sx × sz cells large; `ground`
         is their (lowest, highest) ground, by default that of the single cells."""
-        ix = np.asarray(ix)
-        out = np.zeros(ix.size, INSTANCE_DTYPE)
-        out["origin"][:, 0] = self.origin[0] + ix
-        out["origin"][:, 1] = self.origin[1] + np.asarray(iz)
-        out["density"] = 1.0
-        out["lod"] = (ALL_IN, 0.0)
-        out["size"][:, 0] = sx
-        out["size"][:, 1] = sz
-        if self.mirror_seed is None:
-            out["mirror"] = 1.0
-        else:
-            out["mirror"] = mirror_bits(out["origin"], self.mirror_seed)
-        out["config"][:, 0] = ix / self.columns
-        out["config"][:, 1] = np.asarray(iz) / self.rows
-        out["config"][:, 2] = 1.0 / self.columns
-        out["config"][:, 3] = 1.0 / self.rows
+        ix, iz = np.asarray(ix), np.asarray(iz)
+        records = np.zeros((ix.size, 9))
+        records[:, X0], records[:, Z0], records[:, SX], records[:, SZ] = ix, iz, sx, sz
         lo, hi = ground if ground is not None else (self.cell_min[ix, iz], self.cell_max[ix, iz])
-        out["ground"][:, 0] = lo
-        out["ground"][:, 1] = np.asarray(hi, np.float32) - np.asarray(lo, np.float32)
-        return out
+        records[:, Y_LO], records[:, Y_HI] = lo, hi
+        records[:, W] = ALL_IN
+        return self.instances(records)
+
+    def instances(self, records: np.ndarray) -> np.ndarray:
+        """Instances (INSTANCE_DTYPE) of (n, 9) records: origin, size, mirror bits (6.3),
+        config transform into the design maps (6.4), ground, (w, side)."""
+        out = np.empty((records.shape[0], 15), np.float32)
+        mirrored = self.mirror_seed is not None
+        ox, oz = self.origin
+        fill_instances(out, records, ox, oz, self.columns, self.rows, self.noise, mirrored)
+        return out.view(INSTANCE_DTYPE).reshape(records.shape[0])
 
     def all_cells(self) -> np.ndarray:
         ix, iz = np.meshgrid(np.arange(self.columns), np.arange(self.rows), indexing="ij")
         return self.cells(ix.ravel(), iz.ravel())
 
     @property
+    def noise(self) -> np.ndarray:
+        """The aperiodic tiling's noise map (6.3); a dummy when the terrain has none."""
+        return _NO_NOISE if self.mirror_seed is None else noise_map(self.mirror_seed)
+
+    @property
     def rect(self) -> tuple[float, float, float, float]:
         """xmin, zmin, xmax, zmax in world units."""
         x0, z0 = self.origin
         return (x0, z0, x0 + self.columns, z0 + self.rows)
+
+
+@numba.njit(cache=True)
+def fill_instances(out, records, ox, oz, columns, rows, noise, mirrored):
+    """Terrain.instances, row by row into the instances' float32s (the traversal calls it from
+    its compiled walk)."""
+    for k in range(records.shape[0]):
+        x, z = np.float32(ox + records[k, X0]), np.float32(oz + records[k, Z0])
+        out[k, _ORIGIN], out[k, _ORIGIN + 1] = x, z
+        out[k, _DENSITY] = 1.0
+        out[k, _LOD], out[k, _LOD + 1] = records[k, W], records[k, SIDE]
+        out[k, _SIZE], out[k, _SIZE + 1] = records[k, SX], records[k, SZ]
+        if mirrored:
+            out[k, _MIRROR] = mirror_sign(noise, np.float64(x), np.float64(z), 1.0, 0)
+            out[k, _MIRROR + 1] = mirror_sign(noise, np.float64(x), np.float64(z), 1.0, 1)
+        else:
+            out[k, _MIRROR], out[k, _MIRROR + 1] = 1.0, 1.0
+        out[k, _CONFIG], out[k, _CONFIG + 1] = records[k, X0] / columns, records[k, Z0] / rows
+        out[k, _CONFIG + 2], out[k, _CONFIG + 3] = 1.0 / columns, 1.0 / rows
+        lo = np.float32(records[k, Y_LO])
+        out[k, _GROUND], out[k, _GROUND + 1] = lo, np.float32(records[k, Y_HI]) - lo

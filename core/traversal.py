@@ -1,25 +1,30 @@
 """One traversal of the quadtree per frame for all LOD levels (thesis 6.1.2-6.1.4, 6.2).
 
-Breadth-first and vectorised: each tree level is one set of numpy operations over the nodes
-still in play, never a Python loop over nodes or cells. A (nodes × LOD levels) mask holds which
-levels still have to decide a node; the LOD criteria of core/lod_criteria.py clear entries (discard),
-draw a node whole as a macro-cell, or leave it to its children, which inherit the mask (the skip
-flags of Fig. 6.3). Sphere + cone culling drops nodes outside the view. Leaves are classified
-exactly as core/lod.select classifies cells, so without culling both give the same cells.
+Breadth-first, compiled with numba (`_walk`): per tree level the nodes still in play and a
+(nodes × LOD levels) mask of which levels still have to decide each node; the LOD criteria of
+core/lod_criteria.py clear entries (discard), draw a node whole as a macro-cell, or leave it to
+its children, which inherit the mask (the skip flags of Fig. 6.3). Sphere + cone culling drops
+nodes outside the view. Leaves are classified exactly as core/lod.select classifies cells, so
+without culling both give the same cells. The walk returns plain records; turning them into
+instances (mirror bits, config transforms) is numpy over the few hundred records of a frame.
+A traversal used to be ~50 numpy operations per tree level, 4-6 ms of overhead for the
+football's ~500 nodes (thesis: 0.47 ms in C++); compiled, it is a few tens of microseconds.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from core import lod_criteria
 from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
-from core.lod import ALL_IN, LodConfig, classify, weight_near
+from core.lod import ALL_IN, LodConfig
 from core.lod_criteria import Levels
-from core.terrain import Terrain
+from core.terrain import LEVEL, SIDE, SX, SZ, X0, Y_HI, Y_LO, Z0, Terrain, W, fill_instances
 
 
 @dataclass
@@ -30,139 +35,336 @@ class DrawList:
     visited: int  # nodes tested
 
 
-def traverse(terrain: Terrain, eye, config: LodConfig, frustum: Frustum | None = None) -> DrawList:
+def traverse(
+    terrain: Terrain,
+    eye,
+    config: LodConfig,
+    frustum: Frustum | None = None,
+    occupied: np.ndarray | None = None,
+) -> DrawList:
+    """`occupied`: an integral image ((columns + 1) × (rows + 1)) of the cells that can show
+    grass (core/occupancy.py); (macro-)cells with none are left out."""
     tree = terrain.tree
     lv = Levels.of(config)
-    n_levels = lv.count
     eye = np.asarray(eye, np.float64)
     ox, oz = terrain.origin
-
-    records: list[tuple] = []  # (x0, z0, sx, sz, y_lo, y_hi, level, w, side) arrays
-    ix = np.zeros(1, np.int64)
-    iz = np.zeros(1, np.int64)
-    active = np.ones((1, n_levels), bool)  # per node and LOD level: still to be decided
-    visited = 0
-    for level in range(tree.depth - 1, -1, -1):
-        visited += ix.size
-        x0, z0, x1, z1 = tree.extent(level, ix, iz)
-        y_lo = tree.y_min[level][ix, iz].astype(np.float32)
-        y_hi = tree.y_max[level][ix, iz].astype(np.float32)
-        if frustum is not None:
-            lo = np.stack([ox + x0, y_lo, oz + z0], axis=1)
-            hi = np.stack([ox + x1, y_hi + terrain.grass_height, oz + z1], axis=1)
-            visible = frustum.visible((lo + hi) / 2.0, np.linalg.norm(hi - lo, axis=1) / 2.0)
-            active &= visible[:, None]
-        if level == 0:
-            records.append(_leaves(terrain, eye, config, ix, iz, active))
-            break
-        nodes = _nodes(eye, ox, oz, (x0, z0, x1, z1), 1 << level, y_lo, y_hi)
-        active &= lod_criteria.distance(nodes, lv)
-        is_flat = lod_criteria.flat(nodes, lv)
-        box = (x0, z0, x1 - x0, z1 - z0, y_lo, y_hi)
-        node, t = np.nonzero(active & is_flat & lod_criteria.macro_cell(nodes, lv))
-        if node.size:
-            lod_w = np.full(node.size, ALL_IN, np.float32)
-            records.append((*(a[node] for a in box), t, lod_w, np.zeros(node.size, np.float32)))
-            active[node, t] = False
-        pair = active[:, :-1] & active[:, 1:] & is_flat[:, :-1] & is_flat[:, 1:]
-        node, t = np.nonzero(pair & lod_criteria.shared(nodes, lv))
-        if node.size:
-            records.extend(_pair_records(eye, ox, oz, box, node, t, lv.begin, lv.end))
-            active[node, t] = False
-            active[node, t + 1] = False
-        keep = active.any(axis=1)
-        ix, iz, parent = tree.children(level, ix[keep], iz[keep])
-        active = active[keep][parent]
-    levels_out = _instances(terrain, records, n_levels)
+    if frustum is None:
+        cone = np.zeros(12)
+    else:
+        cone = np.concatenate(
+            [
+                frustum.centre,
+                [frustum.radius],
+                frustum.forward,
+                frustum.eye,
+                [frustum.sin_angle, frustum.cos_angle],
+            ]
+        )
+    cells, bounds, visited = _select(
+        tree.packed_min,
+        tree.packed_max,
+        tree.offsets,
+        tree.shapes,
+        tree.columns,
+        tree.rows,
+        eye,
+        float(ox),
+        float(oz),
+        float(terrain.grass_height),
+        lv.table,
+        frustum is not None,
+        cone,
+        terrain.cell_min,
+        terrain.cell_max,
+        occupied is not None,
+        _NO_CELLS if occupied is None else occupied,
+        terrain.noise,
+        terrain.mirror_seed is not None,
+    )
+    cells = cells.view(INSTANCE_DTYPE).reshape(cells.shape[0])
+    levels_out = [cells[bounds[k] : bounds[k + 1]] for k in range(lv.count)]
     if config.silhouettes:
         _silhouettes(levels_out, config, eye, terrain.grass_height)
     return DrawList(levels_out, visited)
 
 
-def _nodes(eye, ox, oz, extent, span, y_lo, y_hi) -> lod_criteria.Nodes:
-    """Horizontal distances from the eye to the nearest and farthest cell centre of each node."""
-    x0, z0, x1, z1 = extent
-    cx0, cx1 = ox + x0 + 0.5, ox + x1 - 0.5
-    cz0, cz1 = oz + z0 + 0.5, oz + z1 - 0.5
-    dx = np.maximum(np.maximum(cx0 - eye[0], eye[0] - cx1), 0.0)
-    dz = np.maximum(np.maximum(cz0 - eye[2], eye[2] - cz1), 0.0)
-    dmax = np.hypot(
-        np.maximum(np.abs(eye[0] - cx0), np.abs(eye[0] - cx1)),
-        np.maximum(np.abs(eye[2] - cz0), np.abs(eye[2] - cz1)),
-    )
-    return lod_criteria.Nodes(np.hypot(dx, dz)[:, None], dmax[:, None], span, y_lo, y_hi)
+_NO_CELLS = np.zeros((1, 1), np.int32)
 
 
-def _leaves(terrain, eye, config, ix, iz, active) -> tuple:
-    """Records for single cells: classified by their centre's distance exactly as
-    core/lod.select does, for every level still active."""
-    ox, oz = terrain.origin
-    centre_x = (np.float32(ox) + ix.astype(np.float32)) + np.float32(0.5)
-    centre_z = (np.float32(oz) + iz.astype(np.float32)) + np.float32(0.5)
-    d = np.hypot(centre_x - eye[0], centre_z - eye[2])
-    nodes, ts, ws, sides = [], [], [], []
-    for t, (inside, lod) in enumerate(classify(d, config)):
-        node = np.nonzero(inside & active[:, t])[0]
-        nodes.append(node)
-        ts.append(np.full(node.size, t))
-        ws.append(lod[node, 0])
-        sides.append(lod[node, 1])
-    node = np.concatenate(nodes)
-    one = np.ones(node.size, np.int64)
-    return (
-        ix[node],
-        iz[node],
-        one,
-        one,
-        terrain.cell_min[ix[node], iz[node]],
-        terrain.cell_max[ix[node], iz[node]],
-        np.concatenate(ts),
-        np.concatenate(ws),
-        np.concatenate(sides),
-    )
+@numba.njit(cache=True)
+def _select(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull,
+            cone, cell_min, cell_max, skip_bare, occupied, noise, mirrored):  # fmt: skip
+    """The walk's records as instances (15 float32s each, INSTANCE_DTYPE's layout), sorted by
+    LOD level; where each level's instances begin (and the last ends); the nodes tested. One
+    compiled call per traversal: inside a frame on llvmpipe every Python-level step costs."""
+    records, visited = _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz,
+                             grass_height, table, cull, cone, cell_min, cell_max, skip_bare,
+                             occupied)  # fmt: skip
+    out = np.empty((records.shape[0], 15), np.float32)
+    fill_instances(out, records, ox, oz, columns, rows, noise, mirrored)
+    bounds = np.searchsorted(records[:, LEVEL], np.arange(table.shape[0] + 1) - 0.5)
+    return out, bounds, visited
 
 
-def _pair_records(eye, ox, oz, box, node, t, begin, end) -> list[tuple]:
+@numba.njit(cache=True)
+def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull, cone,
+          cell_min, cell_max, skip_bare, occupied):  # fmt: skip
+    """Breadth-first from the root: per tree level, the nodes still in play and per node and
+    LOD level whether that level still has to decide it (the skip flags of Fig. 6.3). A node is
+    culled (sphere + cone), discarded by a level it does not reach, drawn whole as a macro-cell
+    or as a node shared by two neighbouring levels, or left to its children, which inherit its
+    flags; leaves are classified as core/lod.select classifies cells. Records (x0, z0, sx, sz,
+    y_lo, y_hi, level, w, side), in the order levels, macro-cells, shared near, shared far,
+    leaves by LOD level (then sorted by LOD level); and the count of nodes tested. With
+    `skip_bare`, records over cells of which `occupied` (an integral image) counts none are
+    dropped."""
+    n_lv = table.shape[0]
+    out = np.empty((64, 9))
+    n = 0
+    ix = np.zeros(1, np.int64)
+    iz = np.zeros(1, np.int64)
+    active = np.ones((1, n_lv), np.bool_)
+    visited = 0
+    gh = np.float32(grass_height)
+    for level in range(shapes.shape[0] - 1, -1, -1):
+        m = ix.size
+        visited += m
+        step = 1 << level
+        base, nz = offsets[level], shapes[level, 1]
+        y_lo = np.empty(m, np.float32)
+        y_hi = np.empty(m, np.float32)
+        for i in range(m):
+            k = base + ix[i] * nz + iz[i]
+            y_lo[i] = _half(lo16[k])
+            y_hi[i] = _half(hi16[k])
+            if cull:
+                x0, z0 = ix[i] * step, iz[i] * step
+                x1, z1 = min(x0 + step, columns), min(z0 + step, rows)
+                top = y_hi[i] + gh
+                if not _visible(cone, ox + x0, y_lo[i], oz + z0, ox + x1, top, oz + z1):
+                    for t in range(n_lv):
+                        active[i, t] = False
+        if level == 0:
+            for t in range(n_lv):
+                for i in range(m):
+                    if active[i, t]:
+                        w, side, inside = _classify(table, t, eye, ox, oz, ix[i], iz[i])
+                        if inside and _grows(skip_bare, occupied, ix[i], iz[i], 1, 1):
+                            lo, hi = cell_min[ix[i], iz[i]], cell_max[ix[i], iz[i]]
+                            out, n = _push(out, n, ix[i], iz[i], 1, 1, lo, hi, t, w, side)
+            break
+        pairs = np.empty((m * n_lv, 2), np.int64)
+        n_pairs = 0
+        keep = np.zeros(m, np.bool_)
+        for i in range(m):
+            x0, z0 = ix[i] * step, iz[i] * step
+            x1, z1 = min(x0 + step, columns), min(z0 + step, rows)
+            dmin, dmax = _node_distances(eye, ox + x0, oz + z0, ox + x1, oz + z1)
+            for t in range(n_lv):
+                if active[i, t] and not lod_criteria.distance(table, t, dmin, dmax):
+                    active[i, t] = False
+            for t in range(n_lv):
+                if (
+                    active[i, t]
+                    and lod_criteria.flat(table, t, y_lo[i], y_hi[i])
+                    and lod_criteria.macro_cell(table, t, dmin, dmax, step)
+                ):
+                    if _grows(skip_bare, occupied, x0, z0, x1 - x0, z1 - z0):
+                        sx, sz = x1 - x0, z1 - z0
+                        out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t, 2.0, 0.0)
+                    active[i, t] = False
+            first = n_pairs
+            for t in range(n_lv - 1):
+                if (
+                    active[i, t]
+                    and active[i, t + 1]
+                    and lod_criteria.flat(table, t, y_lo[i], y_hi[i])
+                    and lod_criteria.flat(table, t + 1, y_lo[i], y_hi[i])
+                    and lod_criteria.shared(table, t, dmin, dmax, step)
+                ):
+                    pairs[n_pairs, 0] = i
+                    pairs[n_pairs, 1] = t
+                    n_pairs += 1
+            for p in range(first, n_pairs):
+                active[i, pairs[p, 1]] = False
+                active[i, pairs[p, 1] + 1] = False
+            for t in range(n_lv):
+                keep[i] |= active[i, t]
+        # shared nodes (see _pair_weight): the near level's records, then the far level's
+        for far in range(2):
+            for p in range(n_pairs):
+                i, t = pairs[p, 0], pairs[p, 1]
+                x0, z0 = ix[i] * step, iz[i] * step
+                sx, sz = min(x0 + step, columns) - x0, min(z0 + step, rows) - z0
+                w = _pair_weight(table, t, eye, ox, oz, x0, z0, sx, sz)
+                if ((far == 0 and w > 0.0) or (far == 1 and w < 1.0)) and _grows(
+                    skip_bare, occupied, x0, z0, sx, sz
+                ):
+                    out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t + far, w, far)
+        ix, iz, active = _children(ix, iz, active, keep, shapes[level - 1, 0], shapes[level - 1, 1])
+    return _by_level(out[:n], n_lv), visited
+
+
+@numba.njit(cache=True)
+def _half(bits):
+    """The float32 value of a half float's bit pattern (numba reads no float16 arrays; a
+    lookup table of all 65536 values was slower, a cache miss per node)."""
+    b = np.int64(bits)
+    exponent, mantissa = (b >> 10) & 0x1F, b & 0x3FF
+    if exponent == 0:
+        value = math.ldexp(float(mantissa), -24)
+    elif exponent == 31:
+        value = math.inf if mantissa == 0 else math.nan
+    else:
+        value = math.ldexp(float(mantissa + 1024), exponent - 25)
+    return np.float32(-value if b >> 15 else value)
+
+
+@numba.njit(cache=True)
+def _grows(skip_bare, occupied, x0, z0, sx, sz) -> bool:
+    """Whether any cell of [x0, x0 + sx) × [z0, z0 + sz) can show grass (core/occupancy.py)."""
+    if not skip_bare:
+        return True
+    x1, z1 = min(x0 + sx, occupied.shape[0] - 1), min(z0 + sz, occupied.shape[1] - 1)
+    return occupied[x1, z1] - occupied[x0, z1] - occupied[x1, z0] + occupied[x0, z0] > 0
+
+
+@numba.njit(cache=True)
+def _by_level(records, n_levels):
+    """The records sorted by LOD level, each level's in the order they were made (stable)."""
+    starts = np.zeros(n_levels + 1, np.int64)
+    for r in range(records.shape[0]):
+        starts[int(records[r, LEVEL]) + 1] += 1
+    starts = np.cumsum(starts)
+    out = np.empty_like(records)
+    fill = starts[:-1].copy()
+    for r in range(records.shape[0]):
+        t = int(records[r, LEVEL])
+        for c in range(9):
+            out[fill[t], c] = records[r, c]
+        fill[t] += 1
+    return out
+
+
+# one signature (arguments converted at each call) keeps it to one compilation
+@numba.njit(
+    "Tuple((f8[:, ::1], i8))(f8[:, ::1], i8, f8, f8, f8, f8, f8, f8, f8, f8, f8)", cache=True
+)
+def _push(out, n, x0, z0, sx, sz, y_lo, y_hi, level, w, side):
+    """Append one record to `out` (grown by doubling when full); the array and the new count."""
+    if n == out.shape[0]:
+        grown = np.empty((2 * n, 9))
+        grown[:n] = out
+        out = grown
+    out[n, X0] = x0
+    out[n, Z0] = z0
+    out[n, SX] = sx
+    out[n, SZ] = sz
+    out[n, Y_LO] = y_lo
+    out[n, Y_HI] = y_hi
+    out[n, LEVEL] = level
+    out[n, W] = w
+    out[n, SIDE] = side
+    return out, n + 1
+
+
+@numba.njit(cache=True)
+def _children(ix, iz, active, keep, nx, nz):
+    """The existing children of the kept nodes in the level below (nx × nz nodes), each with
+    its parent's flags."""
+    count = 0
+    for i in range(ix.size):
+        if keep[i]:
+            count += 4
+    cx = np.empty(count, np.int64)
+    cz = np.empty(count, np.int64)
+    flags = np.empty((count, active.shape[1]), np.bool_)
+    c = 0
+    for i in range(ix.size):
+        if not keep[i]:
+            continue
+        for q in range(4):
+            x, z = 2 * ix[i] + (q & 1), 2 * iz[i] + (q >> 1)
+            if x < nx and z < nz:
+                cx[c], cz[c] = x, z
+                for t in range(active.shape[1]):
+                    flags[c, t] = active[i, t]
+                c += 1
+    return cx[:c], cz[:c], flags[:c]
+
+
+@numba.njit(cache=True)
+def _node_distances(eye, x0, z0, x1, z1):
+    """Horizontal distances from the eye to the nearest and farthest cell centre of the node
+    covering world [x0, x1) × [z0, z1)."""
+    cx0, cx1, cz0, cz1 = x0 + 0.5, x1 - 0.5, z0 + 0.5, z1 - 0.5
+    dx = max(max(cx0 - eye[0], eye[0] - cx1), 0.0)
+    dz = max(max(cz0 - eye[2], eye[2] - cz1), 0.0)
+    far_x = max(abs(eye[0] - cx0), abs(eye[0] - cx1))
+    far_z = max(abs(eye[2] - cz0), abs(eye[2] - cz1))
+    return np.hypot(dx, dz), np.hypot(far_x, far_z)
+
+
+@numba.njit(cache=True)
+def _weight_near(d, e1, e2):
+    """w_1(d) = 1 − linearstep(e1, e2, d) (eq. 5.23), as core/lod.weight_near."""
+    return 1.0 - min(max((d - e1) / (e2 - e1), 0.0), 1.0)
+
+
+@numba.njit(cache=True)
+def _classify(table, t, eye, ox, oz, ix, iz):
+    """A single cell in LOD level t, by its centre's distance, as core/lod.classify: (w, side,
+    whether level t draws it)."""
+    cx = (np.float32(ox) + np.float32(ix)) + np.float32(0.5)
+    cz = (np.float32(oz) + np.float32(iz)) + np.float32(0.5)
+    d = np.hypot(np.float64(cx) - eye[0], np.float64(cz) - eye[2])
+    begin, end = table[t, lod_criteria.BEGIN], table[t, lod_criteria.END]
+    w, side = np.float32(ALL_IN), np.float32(0.0)
+    if t > 0:  # the far side of the transition from the previous level
+        prev_end = table[t - 1, lod_criteria.END]
+        if d < prev_end:
+            w, side = np.float32(_weight_near(d, begin, prev_end)), np.float32(1.0)
+    if t + 1 < table.shape[0]:  # the near side of the transition to the next level
+        nxt = table[t + 1, lod_criteria.BEGIN]
+        if d >= nxt:
+            w, side = np.float32(_weight_near(d, nxt, end)), np.float32(0.0)
+    return w, side, d >= begin and d < end
+
+
+@numba.njit(cache=True)
+def _pair_weight(table, t, eye, ox, oz, x0, z0, sx, sz):
     """Nodes that reach into two neighbouring levels t, t+1 and no third, and fit both levels'
     macro-cell limits: both levels draw the very same node with one w, taken at its centre (the
     near one keeps threshold < w, the far one the rest), so every blade is drawn once. Within
     such a node the boundary between the levels blurs to the node's size, as macro-cells do in
     the thesis (Fig. 6.5); the cells of the node no longer follow their own distances."""
-    x0, z0, sx, sz, y_lo, y_hi = (a[node] for a in box)
-    cx = (np.float32(ox) + x0.astype(np.float32)) + np.float32(0.5) * sx.astype(np.float32)
-    cz = (np.float32(oz) + z0.astype(np.float32)) + np.float32(0.5) * sz.astype(np.float32)
-    d = np.hypot(cx - eye[0], cz - eye[2])
-    w = weight_near(d, begin[t + 1], end[t]).astype(np.float32)
-    near, far = w > 0.0, w < 1.0
-    out = []
-    for keep, level, side in ((near, t, 0.0), (far, t + 1, 1.0)):
-        out.append(
-            (
-                x0[keep],
-                z0[keep],
-                sx[keep],
-                sz[keep],
-                y_lo[keep],
-                y_hi[keep],
-                level[keep],
-                w[keep],
-                np.full(int(keep.sum()), side, np.float32),
-            )
-        )
-    return out
+    cx = (np.float32(ox) + np.float32(x0)) + np.float32(0.5) * np.float32(sx)
+    cz = (np.float32(oz) + np.float32(z0)) + np.float32(0.5) * np.float32(sz)
+    d = np.hypot(np.float64(cx) - eye[0], np.float64(cz) - eye[2])
+    e1, e2 = table[t + 1, lod_criteria.BEGIN], table[t, lod_criteria.END]
+    return np.float32(_weight_near(d, e1, e2))
 
 
-def _instances(terrain: Terrain, records: list[tuple], n_levels: int) -> list[np.ndarray]:
-    """All records turned into instances at once, then split by LOD level."""
-    if not records:
-        return [np.zeros(0, INSTANCE_DTYPE) for _ in range(n_levels)]
-    x0, z0, sx, sz, y_lo, y_hi, t, w, side = (np.concatenate(a) for a in zip(*records, strict=True))
-    cells = terrain.cells(x0, z0, sx, sz, (y_lo, y_hi))
-    cells["lod"][:, 0] = w
-    cells["lod"][:, 1] = side
-    order = np.argsort(t, kind="stable")
-    bounds = np.searchsorted(t[order], np.arange(n_levels + 1))
-    return [cells[order[bounds[k] : bounds[k + 1]]] for k in range(n_levels)]
+@numba.njit(cache=True)
+def _visible(cone, x0, y0, z0, x1, y1, z1) -> bool:
+    """core/frustum.Frustum.visible for the bounding sphere of one box; `cone` packs the
+    frustum's sphere centre (3), radius, view direction (3), eye (3), sin and cos of the cone's
+    half angle."""
+    sx, sy, sz = (x0 + x1) / 2.0, (y0 + y1) / 2.0, (z0 + z1) / 2.0
+    r = np.sqrt((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2) / 2.0
+    if (sx - cone[0]) ** 2 + (sy - cone[1]) ** 2 + (sz - cone[2]) ** 2 > (r + cone[3]) ** 2:
+        return False
+    fx, fy, fz, sin_a, cos_a = cone[4], cone[5], cone[6], cone[10], cone[11]
+    ux, uy, uz = cone[7] - r / sin_a * fx, cone[8] - r / sin_a * fy, cone[9] - r / sin_a * fz
+    dx, dy, dz = sx - ux, sy - uy, sz - uz
+    e = dx * fx + dy * fy + dz * fz
+    if not (e > 0 and e * e >= (dx * dx + dy * dy + dz * dz) * cos_a**2):
+        return False
+    dx, dy, dz = sx - cone[7], sy - cone[8], sz - cone[9]
+    d_len2 = dx * dx + dy * dy + dz * dz
+    e = -(dx * fx + dy * fy + dz * fz)
+    behind_apex = e > 0 and e * e >= d_len2 * sin_a**2
+    return not behind_apex or d_len2 <= r * r
 
 
 def _silhouettes(out: list[np.ndarray], config: LodConfig, eye, grass_height: float) -> None:

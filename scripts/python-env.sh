@@ -16,3 +16,5 @@ fi
 "$venv/bin/python" -m pip install --quiet --upgrade pip
 echo "sward setup: installing sward and its test tools into $venv"
 "$venv/bin/python" -m pip install --quiet -e '.[test]'
+echo "sward setup: compiling the traversal kernels (numba, once)"
+"$venv/bin/python" scripts/compile_kernels.py

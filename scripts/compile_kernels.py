@@ -1,0 +1,32 @@
+"""Compiles Sward's numba kernels into their on-disk cache (core/__pycache__), once per install:
+without it the first traversal of a fresh install, in the designer or a test, waits ~15 s for
+the compiler on a 2-core machine. scripts/python-env.sh runs it after installing; a kernel whose
+source changed later compiles again on its first call."""
+
+import time
+
+import numpy as np
+
+from core.frustum import Frustum
+from core.heights import hills
+from core.lod import LodConfig
+from core.occupancy import DensityOccupancy
+from core.terrain import Terrain
+from core.tiling import mirror_bits
+from core.traversal import traverse
+
+
+def main() -> None:
+    start = time.perf_counter()
+    terrain = Terrain(8, 8, mirror_seed=1, heights=hills(16), height_scale=1.0)
+    occupancy = DensityOccupancy(8, 8, np.ones((16, 16, 1), np.float32))
+    eye = (1.0, 2.0, 1.0)
+    frustum = Frustum.from_view(eye, (4.0, 0.0, 4.0), 50.0, 1.5, 0.1, 100.0)
+    traverse(terrain, eye, LodConfig(), frustum, occupancy.integral[0])
+    terrain.cells(np.arange(2), np.arange(2))
+    mirror_bits(np.zeros((1, 2)))
+    print(f"sward setup: numba kernels compiled in {time.perf_counter() - start:.1f} s")
+
+
+if __name__ == "__main__":
+    main()
