@@ -19,6 +19,7 @@ SUITES = (
     "preview",
     "latency",
     "files",
+    "large_terrain",
 )
 MODULES = {"techniques": "representations"}
 

@@ -27,6 +27,16 @@ def _size(text: str) -> tuple[int, int]:
     return w, h
 
 
+def _cells(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"malformed terrain size {text!r}; expected WxH in cells, e.g. 4096x4096"
+        ) from None
+    return w, h
+
+
 def _vec3(text: str) -> tuple[float, float, float]:
     try:
         x, y, z = (float(v) for v in text.split(","))
@@ -94,6 +104,11 @@ def parser() -> argparse.ArgumentParser:
     n.add_argument(
         "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
     )
+    n.add_argument(
+        "--cells",
+        type=_cells,
+        help="terrain size WxH in cells (default: the scene's); the maps are resampled",
+    )
 
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
@@ -121,13 +136,22 @@ def _document(args: argparse.Namespace):
 def cmd_new(args: argparse.Namespace) -> int:
     from core.project_file import ProjectError, save_project
 
-    document = _document(args)
+    if args.cells is None:
+        document = _document(args)
+    else:
+        try:
+            document = get_scene(args.scene).resized(*args.cells).document()
+        except KeyError as exc:
+            raise CliError(exc.args[0]) from None
+        except ValueError as exc:
+            raise CliError(f"--cells: {exc}") from None
     _writable(args.file)
     try:
         save_project(args.file, document)
     except ProjectError as exc:
         raise CliError(str(exc)) from None
-    print(f"wrote {args.file} (scene {document.name})")
+    t = document.terrain_spec
+    print(f"wrote {args.file} (scene {document.name}, {t.columns} × {t.rows} cells)")
     return 0
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -14,6 +14,10 @@ from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.markings import football_colour_map
 from core.params import DEFAULT_PRESET, PRESETS, PatchParams
+from core.project_schema import MAX_CELLS
+
+# a resized scene's maps (Scene.resized): 1024² texels × the stack's layers is ~60 MB
+MAX_MAP_SIDE = 1024
 
 
 @dataclass(frozen=True)
@@ -72,6 +76,21 @@ class Scene:
             paths=self.paths,
             props=tuple(Prop(*row) for row in self.props),
         )
+
+    def resized(self, columns: int, rows: int) -> Scene:
+        """The scene over columns × rows cells: its maps are made anew at a size that keeps
+        their texels per cell (so hills, paths and markings stretch with the terrain), at most
+        MAX_MAP_SIDE texels a side; cameras and props keep their places."""
+        if not (1 <= columns and 1 <= rows and columns * rows <= MAX_CELLS):
+            raise ValueError(
+                f"terrain {columns} × {rows} cells out of range; at least 1 × 1, at most "
+                f"{MAX_CELLS:,} cells"
+            )
+        (w, h), (gx, gz) = self.map_size, self.grid
+        tx, tz = w * columns / gx, h * rows / gz
+        fit = min(1.0, MAX_MAP_SIDE / max(tx, tz))
+        size = (max(round(tx * fit), 8), max(round(tz * fit), 8))
+        return replace(self, grid=(columns, rows), map_size=size)
 
     def _design_maps(self) -> DesignMaps:
         """Procedural defaults: colour variation, the height map, the density maps."""

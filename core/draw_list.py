@@ -53,8 +53,7 @@ def draw_list(
     else:
         config = LodConfig((LodLevel(mode, 0.0, None, slices=slices),))
     if terrain is not None:
-        occupied = None if occupancy is None else occupancy.integral[channel]
-        parts = traverse(terrain, eye, config, frustum, occupied).levels
+        parts = traverse(terrain, eye, config, frustum, occupancy, channel).levels
     elif mode == ViewMode.LOD:
         parts = lod_select(instances, eye, config)
     else:

@@ -7,7 +7,7 @@ The map is sampled bilinearly (GL_LINEAR, clamp to edge): a sample inside a cell
 texels whose centres lie within one texel of the cell, so a cell is occupied when the map
 dilated by one texel has a non-zero value at a texel centre inside the cell (or, for a cell
 narrower than a texel, at the nearest one). Edits update only the cells their rectangle can
-reach; an integral image answers "any occupied cell in this rectangle" per instance in O(1).
+reach and the quadtree nodes above them; a node is occupied when any of its cells is.
 """
 
 from __future__ import annotations
@@ -15,6 +15,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from core.quadtree import layout, level_views
 
 Rect = tuple[int, int, int, int]  # x (column), y (row), width, height in texels
 
@@ -33,16 +35,30 @@ def _starts(cells: int, texels: int) -> np.ndarray:
 
 
 class DensityOccupancy:
+    """Per cell and per quadtree node (the terrain's layout, core/quadtree.py), one bit per
+    density channel: whether the cell, or any cell of the node, can show grass of the type
+    that grows by that channel. The traversal skips a node whose bit is clear, and with it its
+    whole subtree. One byte per node: 39 MB for 4096² cells (an integral image per channel
+    needed 540 MB)."""
+
     def __init__(self, columns: int, rows: int, density: np.ndarray) -> None:
         """density: the density map (rows, columns, channels) of the design stack."""
         self.columns, self.rows = columns, rows
         self.channels = density.shape[2]
-        self.cell_max = np.zeros((self.channels, columns, rows), np.float32)
-        self.integral = np.zeros((self.channels, columns + 1, rows + 1), np.int32)
+        if self.channels > 8:
+            raise ValueError(f"at most 8 density channels, got {self.channels}")
+        self.shapes, self.offsets = layout(columns, rows)
+        self.packed = np.zeros(self.offsets[-1], np.uint8)
+        self.levels = level_views(self.packed, self.shapes, self.offsets)
         self.update(density)
 
+    def grows(self, channel: int) -> np.ndarray:
+        """(columns, rows) bool: the cells that can show grass of `channel`."""
+        return (self.levels[0] & np.uint8(1 << channel)) != 0
+
     def update(self, density: np.ndarray, rect: Rect | None = None) -> None:
-        """Recompute the cells an edit of `rect` (the whole map if None) can reach."""
+        """Recompute the cells an edit of `rect` (the whole map if None) can reach, and the
+        nodes above them."""
         h, w = density.shape[:2]
         sx, sz = _starts(self.columns, w), _starts(self.rows, h)
         if rect is None:
@@ -58,22 +74,22 @@ class DensityOccupancy:
         tx0, tx1 = max(sx[c0] - 1, 0), min(sx[c1] + 1, w)  # one texel margin for the dilation
         tz0, tz1 = max(sz[r0] - 1, 0), min(sz[r1] + 1, h)
         block = _dilate(np.asarray(density[tz0:tz1, tx0:tx1], np.float32))
+        bits = np.zeros(block.shape[:2], np.uint8)
+        for channel in range(self.channels):
+            bits |= (block[..., channel] > 0.0).astype(np.uint8) << np.uint8(channel)
         ix = np.clip(sx[c0:c1] - tx0, 0, block.shape[1] - 1)
         iz = np.clip(sz[r0:r1] - tz0, 0, block.shape[0] - 1)
         # a cell's texels run from its start to the next cell's start; an empty range (a cell
         # narrower than a texel) gives the texel at its start, the nearest centre after it
-        along_x = np.maximum.reduceat(block[:, : max(sx[c1] - tx0, 1)], ix, axis=1)
-        cells = np.maximum.reduceat(along_x[: max(sz[r1] - tz0, 1)], iz, axis=0)
-        self.cell_max[:, c0:c1, r0:r1] = np.transpose(cells, (2, 1, 0))
-        occupied = (self.cell_max > 0.0).astype(np.int32)
-        self.integral[:, 1:, 1:] = occupied.cumsum(axis=1).cumsum(axis=2)
-
-    def occupied(self, channel: int, ix, iz, sx, sz) -> np.ndarray:
-        """Whether any cell of the sx × sz (macro-)cells starting at (ix, iz) can show grass
-        of the type whose density channel is `channel`."""
-        ix, iz = np.asarray(ix, np.int64), np.asarray(iz, np.int64)
-        x1 = np.clip(ix + np.asarray(sx, np.int64), 0, self.columns)
-        z1 = np.clip(iz + np.asarray(sz, np.int64), 0, self.rows)
-        x0, z0 = np.clip(ix, 0, self.columns), np.clip(iz, 0, self.rows)
-        s = self.integral[channel]
-        return (s[x1, z1] - s[x0, z1] - s[x1, z0] + s[x0, z0]) > 0
+        along_x = np.bitwise_or.reduceat(bits[:, : max(sx[c1] - tx0, 1)], ix, axis=1)
+        cells = np.bitwise_or.reduceat(along_x[: max(sz[r1] - tz0, 1)], iz, axis=0)
+        self.levels[0][c0:c1, r0:r1] = cells.T
+        for level in range(1, len(self.levels)):  # each node: the OR of its children
+            c0, r0, c1, r1 = c0 // 2, r0 // 2, (c1 + 1) // 2, (r1 + 1) // 2
+            below = self.levels[level - 1]
+            quads = np.zeros((c1 - c0, 2, r1 - r0, 2), np.uint8)
+            part = below[2 * c0 : 2 * c1, 2 * r0 : 2 * r1]
+            quads.reshape(2 * (c1 - c0), 2 * (r1 - r0))[: part.shape[0], : part.shape[1]] = part
+            self.levels[level][c0:c1, r0:r1] = np.bitwise_or.reduce(
+                np.bitwise_or.reduce(quads, axis=3), axis=1
+            )

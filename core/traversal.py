@@ -24,6 +24,7 @@ from core.frustum import Frustum
 from core.grid import INSTANCE_DTYPE
 from core.lod import ALL_IN, LodConfig
 from core.lod_criteria import Levels
+from core.occupancy import DensityOccupancy
 from core.terrain import LEVEL, SIDE, SX, SZ, X0, Y_HI, Y_LO, Z0, Terrain, W, fill_instances
 
 
@@ -40,10 +41,11 @@ def traverse(
     eye,
     config: LodConfig,
     frustum: Frustum | None = None,
-    occupied: np.ndarray | None = None,
+    occupancy: DensityOccupancy | None = None,
+    channel: int = 0,
 ) -> DrawList:
-    """`occupied`: an integral image ((columns + 1) × (rows + 1)) of the cells that can show
-    grass (core/occupancy.py); (macro-)cells with none are left out."""
+    """With `occupancy`, nodes and cells where the grass of density channel `channel` cannot
+    grow (core/occupancy.py) are left out, subtrees and all."""
     tree = terrain.tree
     lv = Levels.of(config)
     eye = np.asarray(eye, np.float64)
@@ -76,8 +78,9 @@ def traverse(
         cone,
         terrain.cell_min,
         terrain.cell_max,
-        occupied is not None,
-        _NO_CELLS if occupied is None else occupied,
+        occupancy is not None,
+        _NO_CELLS if occupancy is None else occupancy.packed,
+        1 << channel,
         terrain.noise,
         terrain.mirror_seed is not None,
     )
@@ -88,18 +91,18 @@ def traverse(
     return DrawList(levels_out, visited)
 
 
-_NO_CELLS = np.zeros((1, 1), np.int32)
+_NO_CELLS = np.zeros(1, np.uint8)
 
 
 @numba.njit(cache=True)
 def _select(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull,
-            cone, cell_min, cell_max, skip_bare, occupied, noise, mirrored):  # fmt: skip
+            cone, cell_min, cell_max, skip_bare, grows, bit, noise, mirrored):  # fmt: skip
     """The walk's records as instances (15 float32s each, INSTANCE_DTYPE's layout), sorted by
     LOD level; where each level's instances begin (and the last ends); the nodes tested. One
     compiled call per traversal: inside a frame on llvmpipe every Python-level step costs."""
     records, visited = _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz,
                              grass_height, table, cull, cone, cell_min, cell_max, skip_bare,
-                             occupied)  # fmt: skip
+                             grows, bit)  # fmt: skip
     out = np.empty((records.shape[0], 15), np.float32)
     fill_instances(out, records, ox, oz, columns, rows, noise, mirrored)
     bounds = np.searchsorted(records[:, LEVEL], np.arange(table.shape[0] + 1) - 0.5)
@@ -108,7 +111,7 @@ def _select(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_heigh
 
 @numba.njit(cache=True)
 def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull, cone,
-          cell_min, cell_max, skip_bare, occupied):  # fmt: skip
+          cell_min, cell_max, skip_bare, grows, bit):  # fmt: skip
     """Breadth-first from the root: per tree level, the nodes still in play and per node and
     LOD level whether that level still has to decide it (the skip flags of Fig. 6.3). A node is
     culled (sphere + cone), discarded by a level it does not reach, drawn whole as a macro-cell
@@ -116,8 +119,8 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
     flags; leaves are classified as core/lod.select classifies cells. Records (x0, z0, sx, sz,
     y_lo, y_hi, level, w, side), in the order levels, macro-cells, shared near, shared far,
     leaves by LOD level (then sorted by LOD level); and the count of nodes tested. With
-    `skip_bare`, records over cells of which `occupied` (an integral image) counts none are
-    dropped."""
+    `skip_bare`, nodes whose occupancy byte in `grows` (core/occupancy.py, packed like the
+    tree) lacks `bit` are dropped like culled ones."""
     n_lv = table.shape[0]
     out = np.empty((64, 9))
     n = 0
@@ -137,6 +140,9 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
             k = base + ix[i] * nz + iz[i]
             y_lo[i] = _half(lo16[k])
             y_hi[i] = _half(hi16[k])
+            if skip_bare and not grows[k] & bit:
+                for t in range(n_lv):
+                    active[i, t] = False
             if cull:
                 x0, z0 = ix[i] * step, iz[i] * step
                 x1, z1 = min(x0 + step, columns), min(z0 + step, rows)
@@ -149,7 +155,7 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                 for i in range(m):
                     if active[i, t]:
                         w, side, inside = _classify(table, t, eye, ox, oz, ix[i], iz[i])
-                        if inside and _grows(skip_bare, occupied, ix[i], iz[i], 1, 1):
+                        if inside:
                             lo, hi = cell_min[ix[i], iz[i]], cell_max[ix[i], iz[i]]
                             out, n = _push(out, n, ix[i], iz[i], 1, 1, lo, hi, t, w, side)
             break
@@ -169,9 +175,8 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                     and lod_criteria.flat(table, t, y_lo[i], y_hi[i])
                     and lod_criteria.macro_cell(table, t, dmin, dmax, step)
                 ):
-                    if _grows(skip_bare, occupied, x0, z0, x1 - x0, z1 - z0):
-                        sx, sz = x1 - x0, z1 - z0
-                        out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t, 2.0, 0.0)
+                    sx, sz = x1 - x0, z1 - z0
+                    out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t, 2.0, 0.0)
                     active[i, t] = False
             first = n_pairs
             for t in range(n_lv - 1):
@@ -197,9 +202,7 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                 x0, z0 = ix[i] * step, iz[i] * step
                 sx, sz = min(x0 + step, columns) - x0, min(z0 + step, rows) - z0
                 w = _pair_weight(table, t, eye, ox, oz, x0, z0, sx, sz)
-                if ((far == 0 and w > 0.0) or (far == 1 and w < 1.0)) and _grows(
-                    skip_bare, occupied, x0, z0, sx, sz
-                ):
+                if (far == 0 and w > 0.0) or (far == 1 and w < 1.0):
                     out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t + far, w, far)
         ix, iz, active = _children(ix, iz, active, keep, shapes[level - 1, 0], shapes[level - 1, 1])
     return _by_level(out[:n], n_lv), visited
@@ -218,15 +221,6 @@ def _half(bits):
     else:
         value = math.ldexp(float(mantissa + 1024), exponent - 25)
     return np.float32(-value if b >> 15 else value)
-
-
-@numba.njit(cache=True)
-def _grows(skip_bare, occupied, x0, z0, sx, sz) -> bool:
-    """Whether any cell of [x0, x0 + sx) × [z0, z0 + sz) can show grass (core/occupancy.py)."""
-    if not skip_bare:
-        return True
-    x1, z1 = min(x0 + sx, occupied.shape[0] - 1), min(z0 + sz, occupied.shape[1] - 1)
-    return occupied[x1, z1] - occupied[x0, z1] - occupied[x1, z0] + occupied[x0, z0] > 0
 
 
 @numba.njit(cache=True)

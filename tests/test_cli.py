@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from app.scenes import get_scene
 from tests.conftest import coverage
 from tests.project_files import project_parts, write_project
 
@@ -139,6 +140,27 @@ def test_profile_along_a_path_and_bad_path(tmp_path):
     assert r.returncode == 2
     assert "unknown camera path 'nowhere'" in r.stderr and "orbit" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_new_makes_a_terrain_of_any_size_with_its_maps_resampled(tmp_path):
+    from core.project_file import load_project
+
+    path = tmp_path / "wide.sward"
+    r = sward("new", str(path), "--scene", "meadow", "--cells", "192x96")
+    assert r.returncode == 0, r.stderr
+    assert "192 × 96 cells" in r.stdout
+    wide, meadow = load_project(path), get_scene("meadow").document()
+    assert (wide.terrain.columns, wide.terrain.rows) == (192, 96)
+    # the 48 × 48 meadow's 256² maps keep their texels per cell: 1024 × 512
+    assert wide.maps.size == (1024, 512)
+    # resampled, not cut: the hills and the density stretch with the terrain
+    heights, original = wide.maps.layer("height")[..., 0], meadow.maps.layer("height")[..., 0]
+    assert abs(float(heights.mean()) - float(original.mean())) < 0.05
+    assert wide.terrain.height_scale == meadow.terrain.height_scale
+    for bad, message in (("40x", "malformed terrain size"), ("5000x5000", "out of range")):
+        r = sward("new", str(tmp_path / "x.sward"), "--scene", "meadow", "--cells", bad)
+        assert r.returncode == 2 and message in r.stderr and "Traceback" not in r.stderr
+    assert not (tmp_path / "x.sward").exists()
 
 
 def test_new_writes_a_project_that_render_reads(tmp_path):

@@ -1,6 +1,6 @@
 """Skipping cells without grass: a cell is dropped only if every bilinear sample of the density
-map inside it is zero, edits update exactly like a full recomputation, macro-cells ask for any
-occupied cell."""
+map inside it is zero, edits update exactly like a full recomputation, a quadtree node is
+occupied when any of its cells is."""
 
 import numpy as np
 import pytest
@@ -44,7 +44,7 @@ def test_no_cell_with_grass_is_ever_dropped(seed, size, cells):
     occ = DensityOccupancy(*cells, d)
     for channel in range(2):
         seen = samples_nonzero(d, channel, *cells)
-        kept = occ.cell_max[channel] > 0
+        kept = occ.grows(channel)
         assert not np.any(seen & ~kept)  # grass there: kept
         # conservative only near grass: a kept cell lies within 2 texels of a non-zero texel
         h, w = d.shape[:2]
@@ -59,14 +59,29 @@ def test_no_cell_with_grass_is_ever_dropped(seed, size, cells):
             assert np.min(np.maximum(gap_x, gap_y)) <= 2.0 + 1e-9
 
 
-def test_bare_cells_are_dropped_and_macro_cells_ask_for_any():
+def test_bare_cells_are_dropped_and_nodes_ask_for_any_cell():
     d = np.zeros((64, 64, 1), np.float32)
     d[40:48, 8:16] = 1.0  # a clump: texels 8..15 × 40..47, cells of 8 texels: cell (1, 5)
     occ = DensityOccupancy(8, 8, d)
-    grid = occ.cell_max[0] > 0
+    grid = occ.grows(0)
     assert grid[1, 5] and grid.sum() <= 9  # the clump's cell and, at most, its neighbours
     assert not grid[6, 1]
-    assert occ.occupied(0, [0, 4], [4, 0], [4, 4], [4, 4]).tolist() == [True, False]
+    # level 2: nodes of 4 × 4 cells; (0, 1) holds cells 0..3 × 4..7, (1, 0) cells 4..7 × 0..3
+    assert occ.levels[2][0, 1] & 1 and not occ.levels[2][1, 0] & 1
+    assert occ.levels[3][0, 0] & 1  # the root
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), cells=st.sampled_from([(8, 8), (5, 3), (13, 30), (1, 7)]))
+def test_a_node_is_occupied_when_any_of_its_cells_is(seed, cells):
+    rng = np.random.default_rng(seed)
+    occ = DensityOccupancy(*cells, sparse_map(rng, 24, 24, channels=3))
+    for level, nodes in enumerate(occ.levels):
+        step = 1 << level
+        for x in range(nodes.shape[0]):
+            for z in range(nodes.shape[1]):
+                cells_bits = occ.levels[0][x * step : (x + 1) * step, z * step : (z + 1) * step]
+                assert nodes[x, z] == np.bitwise_or.reduce(cells_bits, axis=None)
 
 
 @pytest.mark.parametrize("rect", [(0, 0, 3, 3), (10, 20, 7, 1), (60, 60, 4, 4), (31, 0, 1, 64)])
@@ -79,5 +94,4 @@ def test_an_edit_updates_like_a_full_recomputation(rect):
     d[y : y + h, x : x + w, 1] = 0.7
     occ.update(d, rect)
     full = DensityOccupancy(12, 10, d)
-    assert np.array_equal(occ.cell_max, full.cell_max)
-    assert np.array_equal(occ.integral, full.integral)
+    assert np.array_equal(occ.packed, full.packed)  # cells and every node above them
