@@ -6,13 +6,11 @@ lattice wraps with the given period.
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
+import numba
 import numpy as np
-
-
-def _fade(t: np.ndarray) -> np.ndarray:
-    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
 
 
 def perlin2d(x: np.ndarray, y: np.ndarray, period: int, seed: int) -> np.ndarray:
@@ -23,23 +21,31 @@ def perlin2d(x: np.ndarray, y: np.ndarray, period: int, seed: int) -> np.ndarray
     rng = np.random.default_rng(seed)
     angles = rng.uniform(0.0, 2.0 * np.pi, size=(period, period))
     grad = np.stack([np.cos(angles), np.sin(angles)], axis=-1)
+    px, py = np.broadcast_arrays(
+        np.asarray(x, np.float64) * period, np.asarray(y, np.float64) * period
+    )
+    out = np.empty(px.shape)
+    _perlin_into(np.ravel(px), np.ravel(py), grad, period, out.reshape(-1))
+    return out
 
-    px = np.asarray(x, dtype=np.float64) * period
-    py = np.asarray(y, dtype=np.float64) * period
-    x0 = np.floor(px).astype(np.int64)
-    y0 = np.floor(py).astype(np.int64)
-    fx = px - x0
-    fy = py - y0
 
-    def corner(dx: int, dy: int) -> np.ndarray:
-        g = grad[(x0 + dx) % period, (y0 + dy) % period]
-        return g[..., 0] * (fx - dx) + g[..., 1] * (fy - dy)
-
-    u = _fade(fx)
-    v = _fade(fy)
-    bottom = corner(0, 0) * (1 - u) + corner(1, 0) * u
-    top = corner(0, 1) * (1 - u) + corner(1, 1) * u
-    return bottom * (1 - v) + top * v
+@numba.njit(cache=True)
+def _perlin_into(px, py, grad, period, out):
+    """Per point: the gradients of its lattice cell's four corners, faded together (compiled:
+    the array version gathered the gradients four times over every point, 36 ms a patch)."""
+    for i in range(px.size):
+        x0, y0 = math.floor(px[i]), math.floor(py[i])
+        fx, fy = px[i] - x0, py[i] - y0
+        c = np.empty(4)
+        for k in range(4):
+            dx, dy = k & 1, k >> 1
+            g = grad[(x0 + dx) % period, (y0 + dy) % period]
+            c[k] = g[0] * (fx - dx) + g[1] * (fy - dy)
+        u = fx * fx * fx * (fx * (fx * 6.0 - 15.0) + 10.0)
+        v = fy * fy * fy * (fy * (fy * 6.0 - 15.0) + 10.0)
+        bottom = c[0] * (1 - u) + c[1] * u
+        top = c[2] * (1 - u) + c[3] * u
+        out[i] = bottom * (1 - v) + top * v
 
 
 def fractal_noise(

@@ -5,9 +5,8 @@ clip planes by an orthographic camera looking along the axis, onto an image whos
 the other horizontal axis and v up the patch height. The horizontal slice: the whole patch from
 above. The patch's neighbouring tiles are drawn too, so blades of the next tile that lean into the
 square are captured and the slices tile seamlessly like the geometry does; but each slab draws
-only the blades that can reach it (blades sorted along the slab's axis, one run of indices per
-tile offset), not the whole patch nine times, which made conversion cost 9× the patch's vertices
-per slice.
+only the blades that reach it (one run of indices per slab and tile offset), not the whole patch
+nine times, which made conversion cost 9× the patch's vertices per slice.
 
 Every slice keeps: albedo + alpha, patch-space normal and density threshold. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
 z = 0 for the horizontal slice.
@@ -60,32 +59,36 @@ def _tiles(offsets) -> np.ndarray:
 
 
 @dataclass
-class _BladeOrder:
-    """The patch's blades sorted along one axis, with each blade's extent on it: a slab draws
-    only the run of blades that can reach it instead of the whole patch nine times."""
+class _BladeRuns:
+    """One index buffer made of runs: each run the indices of exactly the blades of the patch
+    that reach an interval along x or z (a slab, moved by a tile offset), so a slab draws
+    those and no others (a run of blades sorted along the axis, bounded by the widest blade,
+    drew 1.6 times as many)."""
 
-    indices: np.ndarray  # the patch's triangle indices, blade after blade in this order
-    lo: np.ndarray  # (blades,) sorted: the lowest coordinate of each blade on the axis
-    reach: float  # the widest blade's extent on the axis
-    per_blade: int  # indices per blade
-    offset: int = 0  # where these indices start in the index buffer
+    blades: np.ndarray  # (blades, indices per blade): the patch's triangle indices
+    extent: dict[int, tuple[np.ndarray, np.ndarray]]  # axis -> each blade's (lowest, highest)
+    chunks: list[np.ndarray]
+    size: int = 0
 
     @classmethod
-    def of(cls, patch: GrassPatch, axis: int) -> _BladeOrder:
+    def of(cls, patch: GrassPatch) -> _BladeRuns:
         n = patch.roots.shape[0]
-        pos = patch.vertices["position"][:, axis].reshape(n, -1)
-        lo, hi = pos.min(axis=1), pos.max(axis=1)
-        order = np.argsort(lo, kind="stable")
-        per_blade = patch.indices.size // max(n, 1)
-        indices = patch.indices.reshape(n, per_blade)[order].ravel()
-        reach = float((hi - lo).max()) if n else 0.0
-        return cls(np.ascontiguousarray(indices), lo[order], reach, per_blade)
+        extent = {}
+        for axis in (0, 2):
+            pos = patch.vertices["position"][:, axis].reshape(n, -1)
+            extent[axis] = (pos.min(axis=1), pos.max(axis=1))
+        return cls(patch.indices.reshape(n, -1), extent, [])
 
-    def run(self, lo: float, hi: float) -> tuple[int, int]:
-        """(first index, index count) of the blades that may overlap [lo, hi]."""
-        a = int(np.searchsorted(self.lo, lo - self.reach, side="left"))
-        b = int(np.searchsorted(self.lo, hi, side="right"))
-        return self.offset + a * self.per_blade, max(b - a, 0) * self.per_blade
+    def run(self, axis: int, lo: float, hi: float) -> tuple[int, int]:
+        """(first index, index count) of a new run of the blades overlapping [lo, hi]."""
+        low, high = self.extent[axis]
+        chunk = self.blades[(low <= hi) & (high >= lo)].ravel()
+        self.chunks.append(chunk)
+        self.size += chunk.size
+        return self.size - chunk.size, chunk.size
+
+    def indices(self) -> np.ndarray:
+        return np.concatenate(self.chunks) if self.chunks else np.zeros(0, np.uint32)
 
 
 class PatchConverter:
@@ -112,42 +115,57 @@ class PatchConverter:
     ) -> Generator[tuple[int, int], None, SlicedPatch]:
         """The conversion one slice at a time: yields (done, total) after each capture and
         returns the SlicedPatch, so a window can keep responding between the captures."""
-        by_x, by_z = _BladeOrder.of(patch, 0), _BladeOrder.of(patch, 2)
-        # one index buffer holds the blades in both orders: x first, z after it
-        by_z.offset = by_x.indices.size
-        self.geometry.set_patch(
-            replace(patch, indices=np.concatenate([by_x.indices, by_z.indices]))
-        )
+        runs = _BladeRuns.of(patch)
+        across_x, across_z = _extent(patch)  # the patch's reach beyond its square
+        plans = [
+            self._plan(runs, slices, axis, across_z if axis == 0 else across_x) for axis in (0, 2)
+        ]
+        # from above: the whole tile, and of each neighbour the blades that reach into the square
+        top_runs = [(runs.run(0, -np.inf, np.inf), [(0, 0)])]
+        for ox, oz in [(ox, oz) for ox in (-1, 0, 1) for oz in (-1, 0, 1) if (ox, oz) != (0, 0)]:
+            axis, t = (2, oz) if ox == 0 else (0, ox)
+            other = across_x if ox == 0 else across_z
+            if _overlaps(other, ox if ox == 0 else oz):
+                top_runs.append((runs.run(axis, -t, 1.0 - t), [(ox, oz)]))
+        self.geometry.set_patch(replace(patch, indices=runs.indices()))
         h = patch.height  # the tallest tip: slices and cuboids fit the grass, not the box
         total = 2 * slices + 1
-        x = yield from self._layers(by_x, patch, slices, size, 0, h, done=0, total=total)
-        z = yield from self._layers(by_z, patch, slices, size, 2, h, done=slices, total=total)
-        # from above: the whole tile, and of each neighbour the blades that reach into the square
-        # (a run in x order for the tiles beside it along x and at the corners, in z order for
-        # those along z)
-        runs = [((0, by_x.indices.size), [(0, 0)])]
-        for ox, oz in [(ox, oz) for ox in (-1, 0, 1) for oz in (-1, 0, 1) if (ox, oz) != (0, 0)]:
-            order, t = (by_z, oz) if ox == 0 else (by_x, ox)
-            other = _extent(patch)[0 if ox == 0 else 1]
-            if _overlaps(other, ox if ox == 0 else oz):
-                runs.append((order.run(-t, 1.0 - t), [(ox, oz)]))
+        x = yield from self._layers(plans[0], slices, size, 0, h, done=0, total=total)
+        z = yield from self._layers(plans[1], slices, size, 2, h, done=slices, total=total)
         self._begin((top_size, top_size))
         self._draw(
             orthographic(0.0, 1.0, -1.0, 0.0, 0.1, 10.0) @ look_at((0, h + 1.0, 0), (0, 0, 0)),
             (0, 0, top_size, top_size),
             None,
             None,
-            runs,
+            top_runs,
         )
         top = self._read((top_size, top_size))
         yield total, total
         top = SliceLayers(*(a[None] for a in top))
         return SlicedPatch(x=x, z=z, top=top, height=h)
 
+    @staticmethod
+    def _plan(runs: _BladeRuns, n: int, axis: int, across) -> list[list]:
+        """Per slab [i/n, (i+1)/n] along `axis`: (index run, tile offsets) pairs: per tile
+        offset along the axis, the blades of that tile that reach the slab, drawn in the tiles
+        beside it across the slice that reach into the square (`across`: the patch's extent
+        across the slice)."""
+        side = [s for s in (-1, 0, 1) if _overlaps(across, s)]
+        plan = []
+        for i in range(n):
+            lo, hi = i / n, (i + 1) / n
+            slab = []
+            for t in (-1, 0, 1):
+                first, count = runs.run(axis, lo - t, hi - t)
+                if count:
+                    slab.append(((first, count), [(t, s) if axis == 0 else (s, t) for s in side]))
+            plan.append(slab)
+        return plan
+
     def _layers(
         self,
-        order: _BladeOrder,
-        patch: GrassPatch,
+        plan: list[list],
         n: int,
         size: tuple[int, int],
         axis: int,
@@ -155,7 +173,6 @@ class PatchConverter:
         done: int,
         total: int,
     ) -> Generator[tuple[int, int], None, SliceLayers]:
-        across = _extent(patch)[1 if axis == 0 else 0]  # the slice's u axis: z, or x
         w, h = size
         self._begin((w, h * n))  # the family's slabs side by side in one target, read once
         for i in range(n):
@@ -169,15 +186,7 @@ class PatchConverter:
             else:  # look along -z from beyond the slab: screen right = +x
                 view = look_at((0, 0, hi + 2.0), (0, 0, hi))
             proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
-            # per tile offset along the axis, the blades of that tile that reach the slab, drawn
-            # in the tiles beside it across the slice that reach into the square
-            runs = []
-            for t in (-1, 0, 1):
-                first, count = order.run(lo - t, hi - t)
-                if count:
-                    side = [s for s in (-1, 0, 1) if _overlaps(across, s)]
-                    runs.append(((first, count), [(t, s) if axis == 0 else (s, t) for s in side]))
-            self._draw(proj @ view, (0, i * h, w, h), plane_lo, plane_hi, runs)
+            self._draw(proj @ view, (0, i * h, w, h), plane_lo, plane_hi, plan[i])
             yield done + i + 1, total
         color, normal, threshold = self._read((w, h * n))
         return SliceLayers(

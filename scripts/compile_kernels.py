@@ -1,6 +1,6 @@
-"""Compiles Sward's numba kernels into their on-disk cache (core/__pycache__), once per install:
-without it the first traversal of a fresh install, in the designer or a test, waits ~15 s for
-the compiler on a 2-core machine. scripts/python-env.sh runs it after installing; a kernel whose
+"""Compiles Sward's numba kernels into their on-disk cache (__pycache__ beside each module), once
+per install: without it the first traversal or patch conversion of a fresh install, in the
+designer or a test, waits ~20 s for the compiler on a 2-core machine. scripts/python-env.sh runs it after installing; a kernel whose
 source changed later compiles again on its first call."""
 
 import time
@@ -10,10 +10,13 @@ import numpy as np
 from core.frustum import Frustum
 from core.heights import hills
 from core.lod import LodConfig
+from core.mipmaps import build_mips_stack, weighted_chain
 from core.occupancy import DensityOccupancy
 from core.terrain import Terrain
 from core.tiling import mirror_bits
 from core.traversal import traverse
+from render.conversion import SliceLayers
+from render.slices import canonical_data
 
 
 def main() -> None:
@@ -22,9 +25,17 @@ def main() -> None:
     occupancy = DensityOccupancy(8, 8, np.ones((16, 16, 1), np.float32))
     eye = (1.0, 2.0, 1.0)
     frustum = Frustum.from_view(eye, (4.0, 0.0, 4.0), 50.0, 1.5, 0.1, 100.0)
-    traverse(terrain, eye, LodConfig(), frustum, occupancy.integral[0])
+    traverse(terrain, eye, LodConfig(), frustum, occupancy, 0)
     terrain.cells(np.arange(2), np.arange(2))
     mirror_bits(np.zeros((1, 2)))
+    # the patch conversion's mip chains (hills above compiled the noise)
+    build_mips_stack(np.zeros((1, 4, 4, 4), np.float32))
+    weighted_chain(np.zeros((1, 4, 4, 4), np.float32), np.zeros((1, 4, 4), np.float32), 3)
+    canonical_data(
+        SliceLayers(
+            *(np.zeros((1, 4, 4, c), np.float32) for c in (4, 3)), np.zeros((1, 4, 4), np.float32)
+        )
+    )
     print(f"sward setup: numba kernels compiled in {time.perf_counter() - start:.1f} s")
 
 

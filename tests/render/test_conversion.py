@@ -75,7 +75,7 @@ def test_slice_textures_keep_coverage_in_every_level(converter, ctx):
     textures.release()
 
 
-def test_conversion_steps_report_progress_and_give_the_same_slices(converter):
+def test_conversion_steps_report_progress_and_give_the_same_slices(converter, ctx):
     patch = generate_patch(PARAMS)
     steps = converter.steps(patch, 3, SIZE, top_size=32)
     progress = []
