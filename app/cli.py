@@ -15,26 +15,25 @@ class CliError(Exception):
     """Bad input from the command line: printed as one line, exit status 2."""
 
 
-def _size(text: str) -> tuple[int, int]:
+def _wxh(text: str, what: str, example: str) -> tuple[int, int]:
     try:
         w, h = (int(v) for v in text.lower().split("x"))
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"malformed size {text!r}; expected WxH, e.g. 1024x768"
+            f"malformed {what} {text!r}; expected WxH, e.g. {example}"
         ) from None
+    return w, h
+
+
+def _size(text: str) -> tuple[int, int]:
+    w, h = _wxh(text, "size", "1024x768")
     if not (1 <= w <= 8192 and 1 <= h <= 8192):
         raise argparse.ArgumentTypeError(f"size {text!r} out of range; each side 1 … 8192")
     return w, h
 
 
 def _cells(text: str) -> tuple[int, int]:
-    try:
-        w, h = (int(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"malformed terrain size {text!r}; expected WxH in cells, e.g. 4096x4096"
-        ) from None
-    return w, h
+    return _wxh(text, "terrain size", "4096x4096 (cells)")
 
 
 def _vec3(text: str) -> tuple[float, float, float]:

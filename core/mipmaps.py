@@ -82,7 +82,9 @@ def build_mips_stack(stack: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarr
         n, h, w = levels[-1].shape[:3]
         _check_even(h, w)
         nxt = np.empty((n, max(h // 2, 1), max(w // 2, 1), 4), np.float32)
-        _reduce_into(levels[-1], nxt)
+        # alpha_weighted_reduce (alpha: mean): colour weighted by alpha, alpha averaged
+        src = levels[-1]
+        _weighted_into(src[..., :3], src[..., 3], nxt[..., :3], nxt[..., 3])
         levels.append(nxt)
     # the reductions ran on the unscaled alpha (the true covered share); now rescale each level
     for level in levels[1:]:
@@ -113,29 +115,6 @@ def _check_even(h: int, w: int) -> None:
 def _pairs(size, i):
     """The two texels of the level above under texel i (a side of 1 repeats its texel)."""
     return (2 * i, 2 * i + 1) if size > 1 else (0, 0)
-
-
-@numba.njit(cache=True)
-def _reduce_into(src, dst):
-    """alpha_weighted_reduce (alpha: mean) of every image of src (n, h, w, 4) into dst, in
-    float32, adding the four texels row by row."""
-    quarter = np.float32(0.25)
-    for k in range(src.shape[0]):
-        for y in range(dst.shape[1]):
-            y0, y1 = _pairs(src.shape[1], y)
-            for x in range(dst.shape[2]):
-                x0, x1 = _pairs(src.shape[2], x)
-                a00, a01 = src[k, y0, x0, 3], src[k, y0, x1, 3]
-                a10, a11 = src[k, y1, x0, 3], src[k, y1, x1, 3]
-                s = ((a00 + a01) + a10) + a11
-                for c in range(3):
-                    c00, c01 = src[k, y0, x0, c], src[k, y0, x1, c]
-                    c10, c11 = src[k, y1, x0, c], src[k, y1, x1, c]
-                    if s == 0.0:  # eq. 4.9: no weight; the plain average, for the bleeding
-                        dst[k, y, x, c] = (((c00 + c01) + c10) + c11) * quarter
-                    else:
-                        dst[k, y, x, c] = (((c00 * a00 + c01 * a01) + c10 * a10) + c11 * a11) / s
-                dst[k, y, x, 3] = s * quarter
 
 
 @numba.njit(cache=True)
@@ -202,7 +181,10 @@ def weighted_chain(values: np.ndarray, alpha: np.ndarray, count: int) -> list[np
 
 @numba.njit(cache=True)
 def _weighted_into(src, weight, dst, dst_weight):
-    """One level of weighted_chain, in float32, adding the four texels row by row (the order of the array version)."""
+    """One level of a chain weighted by `weight` (its plain average into dst_weight): each
+    texel of dst the weighted mean of the four under it, their plain mean where all weights
+    are 0 (eq. 4.9: something for the bleeding to start from); in float32, adding the four
+    row by row (the order of the array version)."""
     quarter = np.float32(0.25)
     for k in range(src.shape[0]):
         for y in range(dst.shape[1]):
