@@ -20,6 +20,7 @@ SUITES = (
     "latency",
     "files",
     "large_terrain",
+    "volume_cost",
 )
 MODULES = {"techniques": "representations"}
 
