@@ -110,12 +110,27 @@ class SliceLevels:
         )
 
 
+def _stacked(first: LayerLevels, second: LayerLevels) -> LayerLevels:
+    """Two slice families in one chain, the second's slices after the first's along v."""
+    return LayerLevels(
+        [np.concatenate(pair) for pair in zip(first.color, second.color, strict=True)],
+        [np.concatenate(pair) for pair in zip(first.data, second.data, strict=True)],
+        first.count + second.count,
+        repeat_v=False,
+    )
+
+
 @dataclass
 class SliceTextures:
-    x: LayerTextures
-    z: LayerTextures
+    """The slices on the GPU. Both vertical families share one texture pair (`sides`: the
+    slices across x, then those across z, stacked along v): a ray step reads one colour and one
+    data texel whichever family it meets — with a texture per family, llvmpipe fetched from
+    both and selected, a fifth of the volume pass's time."""
+
+    sides: LayerTextures
     top: LayerTextures
     height: float
+    slices: int  # per direction
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
@@ -124,12 +139,12 @@ class SliceTextures:
     @classmethod
     def from_levels(cls, ctx: moderngl.Context, levels: SliceLevels) -> SliceTextures:
         return cls(
-            upload_levels(ctx, levels.x),
-            upload_levels(ctx, levels.z),
+            upload_levels(ctx, _stacked(levels.x, levels.z)),
             upload_levels(ctx, levels.top),
             levels.height,
+            levels.x.count,
         )
 
     def release(self) -> None:
-        for layers in (self.x, self.z, self.top):
+        for layers in (self.sides, self.top):
             layers.release()

@@ -62,7 +62,7 @@ class VolumeRenderer(InstancedRenderer):
             self.textures.release()
         self.textures = textures
         self._owned = owned
-        self.slices = textures.x.count if textures is not None else 0
+        self.slices = textures.slices if textures is not None else 0
 
     def _make_vao(self) -> moderngl.VertexArray:
         return self.ctx.vertex_array(
@@ -87,17 +87,15 @@ class VolumeRenderer(InstancedRenderer):
         p["u_opaque"].value = self.opaque
         p["u_overrun"].value = self.overrun
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
-        p["u_lod_scale"].value = pixel * t.x.color.width
+        p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = self.floor * float(t.height)
         p["u_skip_steps"].value = self.skip_steps
         p["u_top_height"].value = TOP_HEIGHT * float(t.height)
-        p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.x.color.width)
+        p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
         for unit, (name, tex) in enumerate(
             [
-                ("u_x_color", t.x.color),
-                ("u_x_data", t.x.data),
-                ("u_z_color", t.z.color),
-                ("u_z_data", t.z.data),
+                ("u_side_color", t.sides.color),
+                ("u_side_data", t.sides.data),
                 ("u_top_color", t.top.color),
                 ("u_top_data", t.top.data),
             ]

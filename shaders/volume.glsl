@@ -57,10 +57,10 @@ uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
 uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
 uniform float u_overrun;       // cells a ray may run on past its cuboid
-uniform sampler2D u_x_color;   // slices across x, stacked along v; u runs along z
-uniform sampler2D u_x_data;    // normal, threshold (render/slices.py)
-uniform sampler2D u_z_color;   // slices across z; u runs along x
-uniform sampler2D u_z_data;
+// the vertical slices, stacked along v: the N across x (u runs along z), then the N across z
+// (u runs along x); one texture for both, so that a step fetches once (render/slices.py)
+uniform sampler2D u_side_color;
+uniform sampler2D u_side_data;  // normal, threshold
 uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
 uniform sampler2D u_top_data;
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
@@ -79,10 +79,11 @@ flat in vec2 v_ground;
 
 out vec4 f_color;
 
+// slice: 0 … N-1 across x, N … 2N-1 across z
 vec2 atlas_uv(float u, float v, float slice, float rows, float lod) {
     // half a texel of the coarser mip level read: the filter must not reach the next slice
     float half_row = min(0.5 * exp2(ceil(lod)) / rows, 0.5);
-    return vec2(u, (slice + clamp(v, half_row, 1.0 - half_row)) / u_slices);
+    return vec2(u, (slice + clamp(v, half_row, 1.0 - half_row)) / (2.0 * u_slices));
 }
 
 // The horizontal slice as a layer of the volume at height u_floor (render/volume.py): lit colour
@@ -136,7 +137,7 @@ void main() {
     vec2 pi = pm + (pd + abs(pd)) * p_inum2;                  // eqs. 5.11-5.12
     vec2 safe_d = vec2(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.z) < 1e-6 ? 1e-6 : d.z);
     float lod = max(log2(distance(u_eye, v_patch + base) * u_lod_scale), 0.0);
-    float rows = float(textureSize(u_x_color, 0).y) / u_slices;
+    float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
     vec3 color = vec3(0.0);
     float alpha = 0.0;
@@ -180,9 +181,9 @@ void main() {
         // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
         if ((hit_x ? v_mirror.x : v_mirror.y) < 0.0) slice = u_slices - 1.0 - slice;
         float u = fract((hit_x ? v_mirror.y * h.z : v_mirror.x * h.x));
-        vec2 uv = atlas_uv(u, y / u_height, slice, rows, lod);
-        vec4 c = hit_x ? textureLod(u_x_color, uv, lod) : textureLod(u_z_color, uv, lod);
-        vec4 data = hit_x ? textureLod(u_x_data, uv, lod) : textureLod(u_z_data, uv, lod);
+        vec2 uv = atlas_uv(u, y / u_height, hit_x ? slice : u_slices + slice, rows, lod);
+        vec4 c = textureLod(u_side_color, uv, lod);
+        vec4 data = textureLod(u_side_data, uv, lod);
         float density = u_density * v_density * design_density(duv);
         c.a *= lod_opacity(data.a, density, v_lod);
         if (c.a > 0.003) {

@@ -65,11 +65,15 @@ def test_slice_textures_keep_coverage_in_every_level(converter, ctx):
     base = coverage(sliced.x.color[..., 3], 0.5)
     levels = slice_levels(*SIZE[::-1])
     assert levels == 6  # 32 rows: 32, 16, 8, 4, 2, 1
+    assert textures.slices == 2
     for k in range(levels - 2):  # read back what the GPU holds at each level
-        w, h = max(SIZE[0] >> k, 1), 2 * max(SIZE[1] >> k, 1)
-        raw = np.frombuffer(textures.x.color.read(level=k), np.uint8).reshape(h, w, 4)
+        # both families in one texture: 2 slices across x, then 2 across z
+        w, h = max(SIZE[0] >> k, 1), 4 * max(SIZE[1] >> k, 1)
+        raw = np.frombuffer(textures.sides.color.read(level=k), np.uint8).reshape(h, w, 4)
+        raw = raw[: h // 2]  # the slices across x
         assert coverage(raw[..., 3] / 255.0, 0.5) == pytest.approx(base, abs=0.06)
-        data = np.frombuffer(textures.x.data.read(level=k), np.uint8).reshape(h, w, 4)
+        data = np.frombuffer(textures.sides.data.read(level=k), np.uint8).reshape(h, w, 4)
+        data = data[: h // 2]
         opaque = raw[..., 3] > 128
         assert 0.25 < data[..., 3][opaque].mean() / 255.0 < 0.75  # thresholds survive the mips
     textures.release()

@@ -21,8 +21,8 @@ EXPECTED = {
     "volume.glsl": {
         "u_view_proj",
         "u_slices",
-        "u_x_color",
-        "u_z_data",
+        "u_side_color",
+        "u_side_data",
         "u_top_color",
         "u_design",
         "in_corner",
