@@ -157,7 +157,7 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                         w, side, inside = _classify(table, t, eye, ox, oz, ix[i], iz[i])
                         if inside:
                             lo, hi = cell_min[ix[i], iz[i]], cell_max[ix[i], iz[i]]
-                            out, n = _push(out, n, ix[i], iz[i], 1, 1, lo, hi, t, w, side)
+                            out, n = _push(out, n, *_record(ix[i], iz[i], 1, 1, lo, hi, t, w, side))
             break
         pairs = np.empty((m * n_lv, 2), np.int64)
         n_pairs = 0
@@ -176,7 +176,7 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                     and lod_criteria.macro_cell(table, t, dmin, dmax, step)
                 ):
                     sx, sz = x1 - x0, z1 - z0
-                    out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t, 2.0, 0.0)
+                    out, n = _push(out, n, *_record(x0, z0, sx, sz, y_lo[i], y_hi[i], t, 2.0, 0.0))
                     active[i, t] = False
             first = n_pairs
             for t in range(n_lv - 1):
@@ -203,7 +203,9 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                 sx, sz = min(x0 + step, columns) - x0, min(z0 + step, rows) - z0
                 w = _pair_weight(table, t, eye, ox, oz, x0, z0, sx, sz)
                 if (far == 0 and w > 0.0) or (far == 1 and w < 1.0):
-                    out, n = _push(out, n, x0, z0, sx, sz, y_lo[i], y_hi[i], t + far, w, far)
+                    out, n = _push(
+                        out, n, *_record(x0, z0, sx, sz, y_lo[i], y_hi[i], t + far, w, far)
+                    )
         ix, iz, active = _children(ix, iz, active, keep, shapes[level - 1, 0], shapes[level - 1, 1])
     return _by_level(out[:n], n_lv), visited
 
@@ -240,12 +242,17 @@ def _by_level(records, n_levels):
     return out
 
 
-# one signature (arguments converted at each call) keeps it to one compilation
-@numba.njit(
-    "Tuple((f8[:, ::1], i8))(f8[:, ::1], i8, f8, f8, f8, f8, f8, f8, f8, f8, f8)", cache=True
-)
+@numba.njit(cache=True, inline="always")
+def _record(x0, z0, sx, sz, y_lo, y_hi, level, w, side):
+    """A record's values, all as float64."""
+    return (float(x0), float(z0), float(sx), float(sz), float(y_lo), float(y_hi), float(level),
+            float(w), float(side))  # fmt: skip
+
+
+@numba.njit(cache=True)
 def _push(out, n, x0, z0, sx, sz, y_lo, y_hi, level, w, side):
-    """Append one record to `out` (grown by doubling when full); the array and the new count."""
+    """Append one record to `out` (grown by doubling when full); the array and the new count.
+    Every value is passed as a float (see _record), so it compiles once, lazily."""
     if n == out.shape[0]:
         grown = np.empty((2 * n, 9))
         grown[:n] = out
