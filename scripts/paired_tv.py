@@ -1,0 +1,79 @@
+"""t_v of the meadow's default frame (950 × 720) for an earlier commit and for the working tree,
+measured alternately in one run: this machine's timings drift by ±30 % between runs, so a
+speed-up is only honest as a ratio of times taken side by side.
+
+    .venv/bin/python scripts/paired_tv.py REV [--rounds 3] [--frames 5]
+
+REV is checked out into a temporary git worktree and imported ahead of the installed tree
+(PYTHONPATH); each round renders a few frames with each tree in a fresh process and reports
+the medians and their ratio. Prints JSON.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PROBE = """
+import json, statistics, sys
+from app.scenes import get_scene
+from render.headless import HeadlessRenderer
+doc = get_scene("meadow").document()
+camera = doc.camera()
+with HeadlessRenderer(doc) as renderer:
+    renderer.render(camera, (950, 720))
+    times = [renderer.render(camera, (950, 720))[1].t_v_ms for _ in range(int(sys.argv[1]))]
+print(json.dumps(statistics.median(times)))
+"""
+
+
+def _t_v(tree: Path, frames: int) -> float:
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    out = subprocess.run(
+        [sys.executable, "-c", PROBE, str(frames)],
+        cwd=tempfile.gettempdir(),
+        env=env,
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("rev")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--frames", type=int, default=5)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        old = Path(tmp, "old")
+        subprocess.run(
+            ["git", "-C", str(ROOT), "worktree", "add", "--detach", str(old), args.rev],
+            check=True,
+            capture_output=True,
+        )
+        try:
+            rounds = []
+            for _ in range(args.rounds):
+                before, now = _t_v(old, args.frames), _t_v(ROOT, args.frames)
+                rounds.append({"before_ms": before, "now_ms": now, "ratio": before / now})
+        finally:
+            subprocess.run(
+                ["git", "-C", str(ROOT), "worktree", "remove", "--force", str(old)], check=False
+            )
+    ratios = [r["ratio"] for r in rounds]
+    print(
+        json.dumps({"rev": args.rev, "rounds": rounds, "median_ratio": statistics.median(ratios)})
+    )
+
+
+if __name__ == "__main__":
+    main()
