@@ -79,9 +79,7 @@ def build_mips_stack(stack: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarr
     targets = np.array([coverage(b[..., 3], alpha_ref) for b in base], np.float64)
     levels = [base.copy()]
     while levels[-1].shape[1] > 1 or levels[-1].shape[2] > 1:
-        n, h, w = levels[-1].shape[:3]
-        _check_even(h, w)
-        nxt = np.empty((n, max(h // 2, 1), max(w // 2, 1), 4), np.float32)
+        nxt = np.empty((*_next_size(levels[-1]), 4), np.float32)
         # alpha_weighted_reduce (alpha: mean): colour weighted by alpha, alpha averaged
         src = levels[-1]
         _weighted_into(src[..., :3], src[..., 3], nxt[..., :3], nxt[..., 3])
@@ -106,9 +104,12 @@ def _bleed_stack(out: list[np.ndarray]) -> list[np.ndarray]:
     return out
 
 
-def _check_even(h: int, w: int) -> None:
+def _next_size(stack: np.ndarray) -> tuple[int, int, int]:
+    """(n, h, w) of the next level of an (n, h, w, c) stack; sides must be even or 1."""
+    n, h, w = stack.shape[:3]
     if (h > 1 and h % 2) or (w > 1 and w % 2):
         raise ValueError(f"mip sizes must be even or 1, got {w} × {h}")
+    return n, max(h // 2, 1), max(w // 2, 1)
 
 
 @numba.njit(cache=True)
@@ -169,10 +170,11 @@ def weighted_chain(values: np.ndarray, alpha: np.ndarray, count: int) -> list[np
     out = [np.ascontiguousarray(values, dtype=np.float32)]
     weight = np.ascontiguousarray(alpha, dtype=np.float32)
     while len(out) < count:
-        n, h, w, c = out[-1].shape
-        _check_even(h, w)
-        size = (n, max(h // 2, 1), max(w // 2, 1))
-        nxt, next_weight = np.empty((*size, c), np.float32), np.empty(size, np.float32)
+        size = _next_size(out[-1])
+        nxt, next_weight = (
+            np.empty((*size, out[-1].shape[3]), np.float32),
+            np.empty(size, np.float32),
+        )
         _weighted_into(out[-1], weight, nxt, next_weight)
         out.append(nxt)
         weight = next_weight

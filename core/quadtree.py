@@ -66,8 +66,8 @@ class QuadTree:
             tree.y_min[level][...] = _half(lo, down=True)
             tree.y_max[level][...] = _half(hi, down=False)
             if level + 1 < len(shapes):
-                lo = _reduce(lo, np.minimum, np.inf)
-                hi = _reduce(hi, np.maximum, -np.inf)
+                lo = reduce_2x2(lo, np.minimum, np.inf)
+                hi = reduce_2x2(hi, np.maximum, -np.inf)
         return tree
 
     @property
@@ -119,12 +119,12 @@ def level_views(packed: np.ndarray, shapes: np.ndarray, offsets: np.ndarray):
     )
 
 
-def _reduce(a: np.ndarray, op, fill: float) -> np.ndarray:
+def reduce_2x2(a: np.ndarray, op, fill) -> np.ndarray:
     """op over each 2 × 2 block (a level's parents), an odd edge padded with `fill`: three
     element-wise ops over strided views (a reduce over axes of length 2 was 5× slower)."""
     nx, nz = a.shape
     if nx % 2 or nz % 2:
-        padded = np.full((nx + nx % 2, nz + nz % 2), fill, np.float32)
+        padded = np.full((nx + nx % 2, nz + nz % 2), fill, a.dtype)
         padded[:nx, :nz] = a
         a = padded
     return op(op(a[0::2, 0::2], a[1::2, 0::2]), op(a[0::2, 1::2], a[1::2, 1::2]))

@@ -5,10 +5,10 @@ Breadth-first, compiled with numba (`_walk`): per tree level the nodes still in 
 core/lod_criteria.py clear entries (discard), draw a node whole as a macro-cell, or leave it to
 its children, which inherit the mask (the skip flags of Fig. 6.3). Sphere + cone culling drops
 nodes outside the view. Leaves are classified exactly as core/lod.select classifies cells, so
-without culling both give the same cells. The walk returns plain records; turning them into
-instances (mirror bits, config transforms) is numpy over the few hundred records of a frame.
-A traversal used to be ~50 numpy operations per tree level, 4-6 ms of overhead for the
-football's ~500 nodes (thesis: 0.47 ms in C++); compiled, it is a few tens of microseconds.
+without culling both give the same cells. The same compiled call turns the walk's records into
+instances (Terrain.instances' fill: mirror bits, config transforms). A traversal used to be ~50
+numpy operations per tree level, 4-6 ms of overhead for the football's ~500 nodes (thesis:
+0.47 ms in C++); compiled, it is 0.05-0.2 ms.
 """
 
 from __future__ import annotations
@@ -176,7 +176,9 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                     and lod_criteria.macro_cell(table, t, dmin, dmax, step)
                 ):
                     sx, sz = x1 - x0, z1 - z0
-                    out, n = _push(out, n, *_record(x0, z0, sx, sz, y_lo[i], y_hi[i], t, 2.0, 0.0))
+                    out, n = _push(
+                        out, n, *_record(x0, z0, sx, sz, y_lo[i], y_hi[i], t, ALL_IN, 0.0)
+                    )
                     active[i, t] = False
             first = n_pairs
             for t in range(n_lv - 1):

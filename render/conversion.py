@@ -63,7 +63,7 @@ class _BladeRuns:
     """One index buffer made of runs: each run the indices of exactly the blades of the patch
     that reach an interval along x or z (a slab, moved by a tile offset), so a slab draws
     those and no others (a run of blades sorted along the axis, bounded by the widest blade,
-    drew 1.6 times as many)."""
+    drew many that never reach the slab)."""
 
     blades: np.ndarray  # (blades, indices per blade): the patch's triangle indices
     extent: dict[int, tuple[np.ndarray, np.ndarray]]  # axis -> each blade's (lowest, highest)

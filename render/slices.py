@@ -125,7 +125,7 @@ class SliceTextures:
     """The slices on the GPU. Both vertical families share one texture pair (`sides`: the
     slices across x, then those across z, stacked along v): a ray step reads one colour and one
     data texel whichever family it meets — with a texture per family, llvmpipe fetched from
-    both and selected, a fifth of the volume pass's time."""
+    both and selected (sward bench --suite volume_cost measures the pass)."""
 
     sides: LayerTextures
     top: LayerTextures

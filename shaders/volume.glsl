@@ -148,8 +148,8 @@ void main() {
     float floor_lambda = (d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
     // The horizontal slice's sample, shaded here once, before the loop, and composited when
     // the ray reaches it: inside the loop SIMD lanes meet it at different steps, and its
-    // fetches and shading ran once for every step at which any lane of a group met it (two
-    // fifths of the pass's time, measured).
+    // fetches and shading ran once for every step at which any lane of a group met it
+    // (sward bench --suite volume_cost measures the pass).
     vec4 floor_sample = vec4(0.0);
     if (floor_lambda < 1e29) {
         vec3 g = e + floor_lambda * d;
