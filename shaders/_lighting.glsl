@@ -16,10 +16,25 @@ float ao_blade(float height, float density) {
     return 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * (1.0 - smoothstep(0.0, u_ao_height, height));
 }
 
-vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
+// the diffuse factor of eq. 6.9 with the light passed through from behind
+float lambert_through(vec3 n) {
     float lambert = max(dot(n, u_light_dir), 0.0);
-    float through = u_translucency * max(dot(-n, u_light_dir), 0.0);
-    return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * (lambert + through));
+    return lambert + u_translucency * max(dot(-n, u_light_dir), 0.0);
+}
+
+vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
+    return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * lambert_through(n));
+}
+
+// Σ w_i · shade(modulate(c_i, map), n_i, ao_i, ambient_map, diffuse_map) for samples that share
+// one colour-modulation, ambient and diffuse value (eq. 6.8 and 6.9 are linear in the sample's
+// colour, AO and diffuse factor), from the sums c_ao = Σ w_i c_i ao_i, c_l = Σ w_i c_i l_i,
+// s_ao = Σ w_i ao_i and s_l = Σ w_i l_i, where l_i = lambert_through(n_i).
+vec3 shade_sum(vec3 c_ao, vec3 c_l, float s_ao, float s_l, vec4 map, vec3 ambient_map,
+               vec3 diffuse_map) {
+    vec3 ka = u_ambient_color * ambient_map;
+    vec3 kd = u_light_color * diffuse_map;
+    return (1.0 - map.a) * (ka * c_ao + kd * c_l) + map.a * map.rgb * (ka * s_ao + kd * s_l);
 }
 
 // Technique colour view (thesis Figs. 7.1-7.6): geometry red, volume yellow, image blue, keeping

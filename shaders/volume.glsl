@@ -86,24 +86,44 @@ vec2 atlas_uv(float u, float v, float slice, float rows, float lod) {
     return vec2(u, (slice + clamp(v, half_row, 1.0 - half_row)) / (2.0 * u_slices));
 }
 
-// The horizontal slice as a layer of the volume at height u_floor (render/volume.py): lit colour
-// and alpha where the ray crosses it.
-vec4 horizontal(vec3 g, vec3 d, float lod) {
+// What the ray has gathered, front to back (eqs. 5.19-5.20), kept as the sums that shade_sum
+// (_lighting.glsl) turns into the lit colour once, after the ray: the colour-modulation, ambient
+// and diffuse maps are read once per fragment at the gathered samples' mean position instead of
+// at every sample (their texels span several blades; the sums keep every sample's own colour,
+// normal and AO).
+vec3 g_c_ao = vec3(0.0);   // Σ w c ao
+vec3 g_c_l = vec3(0.0);    // Σ w c l
+float g_ao = 0.0;          // Σ w ao
+float g_l = 0.0;           // Σ w l
+vec2 g_at = vec2(0.0);     // Σ w xz
+float g_alpha = 0.0;       // Σ w
+
+// a sample of colour c (alpha c.a), AO ao and diffuse factor l at xz, behind what was gathered
+void gather(vec4 c, float ao, float l, vec2 xz) {
+    float w = (1.0 - g_alpha) * c.a;
+    g_c_ao += (w * ao) * c.rgb;
+    g_c_l += (w * l) * c.rgb;
+    g_ao += w * ao;
+    g_l += w * l;
+    g_at += w * xz;
+    g_alpha += w;
+}
+
+// The horizontal slice as a layer of the volume at height u_floor (render/volume.py): colour,
+// alpha, AO and diffuse factor where the ray crosses it.
+vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
     vec2 p = v_mirror * g.xz;
     vec2 uv = vec2(p.x, 1.0 - p.y);
     float top_lod = max(lod + u_top_lod_offset, 0.0);  // explicit: no derivatives in the loop
     vec4 c = textureLod(u_top_color, uv, top_lod);
     vec4 data = textureLod(u_top_data, uv, top_lod);
-    vec2 duv = design_uv(v_config, g.xz);
-    float density = u_density * v_density * design_density(duv);
+    float density = u_density * v_density * design_density(design_uv(v_config, g.xz));
     c.a *= lod_opacity(data.a, density, v_lod);
     // unit length here: inside the volume the layer stands for the tips the rays would meet
     vec3 n = normalize(slice_normal(data)) * vec3(v_mirror.x, 1.0, v_mirror.y);
     if (dot(n, -d) < 0.0) n = -n;
-    vec3 albedo = modulate(c.rgb, design_color(duv));
-    vec3 lit = technique(shade(albedo, n, ao_blade(u_top_height, density),
-                               design_ambient(duv), design_diffuse(duv)));
-    return vec4(lit, c.a);
+    ao_l = vec2(ao_blade(u_top_height, density), lambert_through(n));
+    return c;
 }
 
 void main() {
@@ -139,8 +159,6 @@ void main() {
     float lod = max(log2(distance(u_eye, v_patch + base) * u_lod_scale), 0.0);
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
-    vec3 color = vec3(0.0);
-    float alpha = 0.0;
     float depth_lambda = -1.0;
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
     // on uneven ground the plane follows the ground where the ray enters
@@ -151,21 +169,21 @@ void main() {
     // fetches and shading ran once for every step at which any lane of a group met it
     // (sward bench --suite volume_cost measures the pass).
     vec4 floor_sample = vec4(0.0);
+    vec2 floor_ao_l = vec2(0.0);
+    vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
-        vec3 g = e + floor_lambda * d;
-        if (all(greaterThanEqual(g.xz, vec2(-u_overrun))) && all(lessThanEqual(g.xz, v_size + u_overrun)))
-            floor_sample = horizontal(g, d, lod);
+        if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun)))
+            floor_sample = horizontal(floor_at, d, lod, floor_ao_l);
     }
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
         bool hit_x = w.x < w.y;
         float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
         if (floor_lambda < lambda) {  // the horizontal slice lies before the next vertical one
-            color += (1.0 - alpha) * floor_sample.a * floor_sample.rgb;
-            alpha += (1.0 - alpha) * floor_sample.a;
-            if (depth_lambda < 0.0 && alpha > 0.5) depth_lambda = floor_lambda;
+            gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
+            if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = floor_lambda;
             floor_lambda = 1e30;
-            if (alpha > u_opaque) break;
+            if (g_alpha > u_opaque) break;
         }
         vec3 h = e + lambda * d;                              // eq. 5.18
         // A ray may run on into the neighbouring cells (the patch tiles): a cell's fragment that
@@ -195,27 +213,26 @@ void main() {
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
-            vec3 albedo = modulate(c.rgb, design_color(duv));
-            vec3 lit = technique(shade(albedo, n, ao_blade(y, density),
-                                       design_ambient(duv), design_diffuse(duv)));
-            color += (1.0 - alpha) * c.a * lit;               // eq. 5.19 (colour is bled)
-            alpha += (1.0 - alpha) * c.a;                     // eq. 5.20
-            if (depth_lambda < 0.0 && alpha > 0.5) depth_lambda = lambda;
-            if (alpha > u_opaque) break;
+            gather(c, ao_blade(y, density), lambert_through(n), h.xz);  // eqs. 5.19-5.20
+            if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;
+            if (g_alpha > u_opaque) break;
         }
         if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
     }
-    if (floor_lambda < 1e29 && alpha <= u_opaque) {  // left the slices before the plane
-        color += (1.0 - alpha) * floor_sample.a * floor_sample.rgb;
-        if (depth_lambda < 0.0 && alpha + (1.0 - alpha) * floor_sample.a > 0.5) depth_lambda = floor_lambda;
-        alpha += (1.0 - alpha) * floor_sample.a;
+    if (floor_lambda < 1e29 && g_alpha <= u_opaque) {  // left the slices before the plane
+        gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
+        if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = floor_lambda;
     }
-    if (alpha < 0.01) discard;
+    if (g_alpha < 0.01) discard;
+    vec2 duv = design_uv(v_config, g_at / g_alpha);
+    vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color(duv), design_ambient(duv),
+                           design_diffuse(duv));
+    color = technique(color / g_alpha) * g_alpha;  // the technique view of the mean colour
     if (depth_lambda < 0.0) depth_lambda = 0.0;
     vec3 world = e + depth_lambda * d + base;
     vec4 clip = u_view_proj * vec4(world, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
-    f_color = vec4(color, alpha);                             // premultiplied
+    f_color = vec4(color, g_alpha);                           // premultiplied
 }
 
 #endif
