@@ -4,10 +4,10 @@ uniform sampler2DArray u_design;
 
 vec2 design_uv(vec4 config, vec2 local) { return config.xy + local * config.zw; }
 uniform int u_density_channel;  // the grass type's channel of the density map (6.4.5)
-float design_density(vec2 uv) { return texture(u_design, vec3(uv, 0.0))[u_density_channel]; }
-vec4 design_color(vec2 uv) { return texture(u_design, vec3(uv, 1.0)); }
-vec3 design_ambient(vec2 uv) { return texture(u_design, vec3(uv, 2.0)).rgb; }
-vec3 design_diffuse(vec2 uv) { return texture(u_design, vec3(uv, 3.0)).rgb; }
+float design_density(vec2 uv) { return textureLod(u_design, vec3(uv, 0.0), 0.0)[u_density_channel]; }
+vec4 design_color(vec2 uv) { return textureLod(u_design, vec3(uv, 1.0), 0.0); }
+vec3 design_ambient(vec2 uv) { return textureLod(u_design, vec3(uv, 2.0), 0.0).rgb; }
+vec3 design_diffuse(vec2 uv) { return textureLod(u_design, vec3(uv, 3.0), 0.0).rgb; }
 
 // Terrain height in world units at a design-map uv (thesis 6.4.4, eq. 6.13 / 6.16).
 uniform float u_height_scale;
