@@ -1,9 +1,12 @@
-"""Image-based grass renderer (thesis 5.3): one quad per (macro-)cell, all in one instanced draw,
-textured with the horizontal slice; alpha-to-coverage under MSAA like the geometry."""
+"""Image-based grass renderer (thesis 5.3): one quad per (macro-)cell, textured with the
+horizontal slice; alpha-to-coverage under MSAA like the geometry. On uneven ground a cell's slice
+is a grid whose vertices follow the height map (6.4.4); cells on flat ground are one quad, as in
+the thesis, drawn in a second instanced call."""
 
 from __future__ import annotations
 
 import moderngl
+import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
 from render.ground import grid_mesh
@@ -13,29 +16,21 @@ from render.uniforms import FrameUniforms
 from render.volume import TOP_HEIGHT
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
-GRID = 6  # quads per side of one (macro-)cell's slice
+GRID = 6  # quads per side of the slice of a (macro-)cell on uneven ground
 
 
-class ImageRenderer(InstancedRenderer):
-    epsilon = 0.05  # LOD crossover window (eq. 5.26)
-    density_channel = 0  # the grass type's channel of the density map (render/layer.py)
-    technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
-    lift = 0.01
-    alpha_ref = 0.2
-    grazing_lean = 0.4  # see shaders/image.glsl: matches the volume zone's brightness
+class _Batch(InstancedRenderer):
+    """Instances drawn with one mesh (a grid of n × n quads per instance)."""
 
-    def __init__(self, ctx: moderngl.Context) -> None:
+    def __init__(self, ctx: moderngl.Context, program: moderngl.Program, n: int) -> None:
         self.ctx = ctx
-        self.program = load_program(ctx, "image.glsl")
-        # a grid rather than one quad per instance: its vertices follow uneven ground (6.4.4)
-        verts, indices = grid_mesh(GRID)
+        self.program = program
+        verts, indices = grid_mesh(n)
         self.vbo = ctx.buffer(verts.tobytes())
         self.ibo = ctx.buffer(indices.tobytes())
         self.instances: moderngl.Buffer | None = None
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
-        self.textures: SliceTextures | None = None  # shared with the volume renderer
-        self.density = 1.0
 
     def _make_vao(self) -> moderngl.VertexArray:
         return self.ctx.vertex_array(
@@ -44,6 +39,44 @@ class ImageRenderer(InstancedRenderer):
             index_buffer=self.ibo,
             index_element_size=4,
         )
+
+    def draw(self) -> None:
+        if self.vao is not None and self.instance_count:
+            self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
+
+    def release(self) -> None:
+        for obj in (self.vao, self.instances, self.vbo, self.ibo):
+            if obj is not None:
+                obj.release()
+
+
+class ImageRenderer:
+    epsilon = 0.05  # LOD crossover window (eq. 5.26)
+    density_channel = 0  # the grass type's channel of the density map (render/layer.py)
+    technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
+    lift = 0.01
+    alpha_ref = 0.2
+    grazing_lean = 0.4  # see shaders/image.glsl: matches the volume zone's brightness
+    flat_ground = 0.5 * lift  # a cell whose ground varies less is one quad (set_instances)
+
+    def __init__(self, ctx: moderngl.Context) -> None:
+        self.ctx = ctx
+        self.program = load_program(ctx, "image.glsl")
+        # On llvmpipe the grid's small triangles cost most of the pass (every 4 × 4 pixel block
+        # a triangle touches is shaded whole): flat cells get one quad, which lies within
+        # flat_ground of the ground wherever that varies by less, so it stays above it.
+        self.flat = _Batch(ctx, self.program, 1)
+        self.uneven = _Batch(ctx, self.program, GRID)
+        self.instance_count = 0
+        self.textures: SliceTextures | None = None  # shared with the volume renderer
+        self.density = 1.0
+
+    def set_instances(self, instances: np.ndarray) -> None:
+        """The cells to draw: an INSTANCE_DTYPE array, split by the unplanarity of their ground."""
+        flat = instances["ground"][:, 1] <= self.flat_ground
+        self.flat.set_instances(instances[flat])
+        self.uneven.set_instances(instances[~flat])
+        self.instance_count = int(instances.size)
 
     def prepare(self, frame: FrameUniforms) -> None:
         if self.textures is None:
@@ -65,13 +98,13 @@ class ImageRenderer(InstancedRenderer):
         self.ctx.enable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
 
     def draw(self) -> None:
-        if self.vao is not None and self.textures is not None and self.instance_count:
-            self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
+        if self.textures is not None:
+            self.flat.draw()
+            self.uneven.draw()
 
     def finalize(self) -> None:
         self.ctx.disable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
 
     def release(self) -> None:
-        for obj in (self.vao, self.instances, self.vbo, self.ibo):
-            if obj is not None:
-                obj.release()
+        self.flat.release()
+        self.uneven.release()
