@@ -333,7 +333,7 @@ class FramePipeline:
                 ctx.finish()
             return (time.perf_counter() - start) * 1000.0
 
-        self.map_textures.use()
+        self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None

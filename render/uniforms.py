@@ -11,6 +11,8 @@ from core.camera import gl_bytes
 from core.lighting import Lighting
 
 DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
+# units of the height + density textures, one a density channel (DesignMapTextures.grounds)
+GROUND_UNIT = 8
 
 
 @dataclass

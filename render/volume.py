@@ -14,7 +14,7 @@ import numpy as np
 from render.buffers import InstancedRenderer, instance_layout
 from render.shaders import load_program
 from render.slices import SliceTextures
-from render.uniforms import FrameUniforms
+from render.uniforms import GROUND_UNIT, FrameUniforms
 
 # 8 corners of the unit cube and its 12 triangles, wound counter-clockwise seen from outside.
 _CORNERS = np.array([[x, y, z] for z in (0, 1) for y in (0, 1) for x in (0, 1)], dtype=np.float32)
@@ -78,7 +78,7 @@ class VolumeRenderer(InstancedRenderer):
             return
         p = self.program
         frame.apply(p, self.technique_color)
-        p["u_density_channel"].value = self.density_channel
+        p["u_ground"].value = GROUND_UNIT + self.density_channel
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon

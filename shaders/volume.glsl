@@ -67,6 +67,15 @@ uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_floor;         // height of the horizontal slice inside the volume
 uniform int u_skip_steps;      // coarse steps over the height map before the slices
 uniform float u_top_height;    // typical height of what the horizontal slice shows (AO_blade)
+// the height map and this grass type's density in one texture (render/design_maps.py): the ray
+// reads both at every step with one fetch; the same texels as u_design's height and density
+uniform sampler2D u_ground;
+
+// (ground height in world units, design density) at a design-map uv
+vec2 ground_density(vec2 uv) {
+    vec2 t = textureLod(u_ground, uv, 0.0).rg;
+    return vec2(u_height_scale * t.x, t.y);
+}
 
 in vec3 v_patch;
 flat in vec2 v_origin;
@@ -117,7 +126,7 @@ vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
     float top_lod = max(lod + u_top_lod_offset, 0.0);  // explicit: no derivatives in the loop
     vec4 c = textureLod(u_top_color, uv, top_lod);
     vec4 data = textureLod(u_top_data, uv, top_lod);
-    float density = u_density * v_density * design_density(design_uv(v_config, g.xz));
+    float density = u_density * v_density * ground_density(design_uv(v_config, g.xz)).y;
     c.a *= lod_opacity(data.a, density, v_lod);
     // unit length here: inside the volume the layer stands for the tips the rays would meet
     vec3 n = normalize(slice_normal(data)) * vec3(v_mirror.x, 1.0, v_mirror.y);
@@ -145,7 +154,7 @@ void main() {
         for (int k = 1; k <= u_skip_steps; ++k) {
             float lam = leave * float(k) / float(u_skip_steps);
             vec3 p = e + lam * d;
-            if (p.y < ground_height(design_uv(v_config, p.xz)) - v_ground.x + u_height) break;
+            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + u_height) break;
             start = lam;
         }
         e += start * d;
@@ -162,7 +171,7 @@ void main() {
     float depth_lambda = -1.0;
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
     // on uneven ground the plane follows the ground where the ray enters
-    float floor_y = u_floor + ground_height(design_uv(v_config, e.xz)) - v_ground.x;
+    float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
     float floor_lambda = (d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
     // The horizontal slice's sample, shaded here once, before the loop, and composited when
     // the ray reaches it: inside the loop SIMD lanes meet it at different steps, and its
@@ -191,9 +200,9 @@ void main() {
         // fails the depth test once this fragment wrote depth.
         if (h.y < 0.0 || h.y > top || any(lessThan(h.xz, vec2(-u_overrun)))
             || any(greaterThan(h.xz, v_size + u_overrun))) break;
-        vec2 duv = design_uv(v_config, h.xz);
+        vec2 gd = ground_density(design_uv(v_config, h.xz));
         // eqs. 6.16-6.18: shift the lookup by the ground under the hit; outside the grass: none
-        float y = h.y - (ground_height(duv) - v_ground.x);
+        float y = h.y - (gd.x - v_ground.x);
         // under the ground the ray is hidden by the ground drawn before: nothing after counts
         if (y < 0.0) break;
         if (y > u_height) {
@@ -208,7 +217,7 @@ void main() {
         vec2 uv = atlas_uv(u, y / u_height, hit_x ? slice : u_slices + slice, rows, lod);
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
-        float density = u_density * v_density * design_density(duv);
+        float density = u_density * v_density * gd.y;
         c.a *= lod_opacity(data.a, density, v_lod);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);

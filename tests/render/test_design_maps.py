@@ -53,6 +53,23 @@ def test_an_edit_uploads_its_rectangle_only(ctx):
     mirror.release()
 
 
+def test_the_volumes_height_and_density_texture_follows_edits(ctx):
+    maps = DesignMaps(64)
+    mirror = DesignMapTextures(ctx, maps)
+    mirror.use([1])  # the texture of density channel 1, made from the maps as they are
+    maps.write("height", 3, 4, np.full((6, 5, 1), 0.75))
+    maps.write("density", 30, 40, np.full((2, 3, 4), (0.1, 0.2, 0.3, 0.4)))
+    maps.write("diffuse", 0, 0, np.full((8, 8, 3), 0.5))  # not in it
+    mirror.flush()
+    w, h = maps.size
+    gpu = np.frombuffer(mirror.ground(1).read(), np.float16).reshape(h, w, 2)
+    assert np.all(gpu[..., 0] == maps.stack[LAYER_INDEX["height"], ..., 0].astype(np.float16))
+    assert np.all(gpu[..., 1] == maps.stack[LAYER_INDEX["density"], ..., 1].astype(np.float16))
+    assert np.all(gpu[4:10, 3:8, 0] == np.float16(0.75))
+    assert np.all(gpu[40:42, 30:33, 1] == np.float16(0.2))
+    mirror.release()
+
+
 @pytest.mark.parametrize("only", REPRESENTATIONS)
 def test_density_map_clears_grass_where_it_is_black(headless, only):
     doc = document()
