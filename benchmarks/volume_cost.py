@@ -7,7 +7,12 @@ in one run (this machine's times drift; the shares are what to compare):
   fold away, so the shader keeps its size): what rasterising the cuboids, the shader's set-up
   and blending cost — llvmpipe runs it for every fragment, in front or behind;
 - `one_step`: rays of one step instead of VolumeRenderer.max_steps;
-- `half_steps`: rays of half the steps.
+- `half_steps`: rays of half the steps;
+
+and the image-based pass of the `bench` scene (`--only image`, 1024 × 768, Table 7.1's frame)
+beside its own floor, every fragment writing a constant colour: on llvmpipe the image pass costs
+what rasterising its quads under 4× MSAA costs, whatever its shader does, so the volume / image
+ratio of Table 7.1 falls as the volume pass gets faster.
 
 Run: `sward bench --suite volume_cost --out results.json`.
 """
@@ -20,15 +25,13 @@ from contextlib import contextmanager
 SIZE = (950, 720)
 FRAMES = 5
 _FLOOR = "    if (gl_FragCoord.x > -1.0) { f_color = vec4(0.0); gl_FragDepth = 1.0; return; }\n"
+_IMAGE_FLOOR = "    if (gl_FragCoord.x > -1.0) { f_color = vec4(0.3, 0.5, 0.1, 1.0); return; }\n"
+IMAGE_SIZE = (1024, 768)
 
 
-@contextmanager
-def _variant(name: str):
-    """The volume renderers made inside get the variant's program or step count."""
-    import render.volume as volume
+def _floor_loader(patch: str):
+    """load_program for a renderer module whose fragment stage begins with `patch`."""
     from render.shaders import ShaderError, stage_source
-
-    load, steps = volume.load_program, volume.VolumeRenderer.max_steps
 
     def floor_program(ctx, file):
         def stage(kind):
@@ -38,15 +41,24 @@ def _variant(name: str):
                 head, found, tail = text.rpartition(marker)
                 if not found:
                     raise ShaderError(f"shaders/{file}: no main() to patch")
-                text = head + marker + _FLOOR + tail
+                text = head + marker + patch + tail
             return text
 
         return ctx.program(
             vertex_shader=stage("VERTEX_SHADER"), fragment_shader=stage("FRAGMENT_SHADER")
         )
 
+    return floor_program
+
+
+@contextmanager
+def _variant(name: str):
+    """The volume renderers made inside get the variant's program or step count."""
+    import render.volume as volume
+
+    load, steps = volume.load_program, volume.VolumeRenderer.max_steps
     if name == "fragment_floor":
-        volume.load_program = floor_program
+        volume.load_program = _floor_loader(_FLOOR)
     elif name == "one_step":
         volume.VolumeRenderer.max_steps = 1
     elif name == "half_steps":
@@ -72,4 +84,26 @@ def run() -> list[dict]:
     base = rows[0]["median_ms"]
     for row in rows:
         row["share_of_baseline"] = row["median_ms"] / base
+    return rows + _image_floor()
+
+
+def _image_floor() -> list[dict]:
+    import render.image as image
+    from app.scenes import get_scene
+    from render.headless import HeadlessRenderer
+
+    document = get_scene("bench").document()
+    camera = document.camera()
+    rows, load = [], image.load_program
+    for name in ("baseline", "fragment_floor"):
+        image.load_program = load if name == "baseline" else _floor_loader(_IMAGE_FLOOR)
+        try:
+            with HeadlessRenderer(document, mode="image") as renderer:
+                renderer.render(camera, IMAGE_SIZE)
+                times = [renderer.render(camera, IMAGE_SIZE)[1].t_i_ms for _ in range(FRAMES)]
+        finally:
+            image.load_program = load
+        rows.append({"name": f"bench_t_i_{name}", "median_ms": statistics.median(times)})
+    for row in rows:
+        row["share_of_baseline"] = row["median_ms"] / rows[0]["median_ms"]
     return rows
