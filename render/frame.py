@@ -268,23 +268,29 @@ class FramePipeline:
         t0 = time.perf_counter()
         if preview:
             dw, dh = max(1, w // PREVIEW_SCALE), max(1, h // PREVIEW_SCALE)
-            fbo = self.present.target((dw, dh))
         else:
             dw, dh = w, h
-            fbo = self._target(size, self.samples)
+        if self.mode == ViewMode.COMPARE:  # three columns, one representation each
+            edges = [round(dw * k / 3) for k in range(4)]
+            views = [
+                ((edges[k], 0, edges[k + 1] - edges[k], dh), mode)
+                for k, mode in enumerate(REPRESENTATIONS)
+            ]
+        else:
+            views = [((0, 0, dw, dh), self.mode)]
+        # The query first (thesis ch. 6, then ch. 5): what every view draws is selected before
+        # this frame's GPU work, so the CPU's part does not wait behind it.
+        queries = [self._query(camera, region, mode, stats) for region, mode in views]
+        t_clear = time.perf_counter()
+        fbo = self.present.target((dw, dh)) if preview else self._target(size, self.samples)
         fbo.use()
         sky = self.lighting.sky_color
         fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
         if measure:
             ctx.finish()
-        stats.t_o_ms = (time.perf_counter() - t0) * 1000.0
-        if self.mode == ViewMode.COMPARE:  # three columns, one representation each
-            edges = [round(dw * k / 3) for k in range(4)]
-            for k, mode in enumerate(REPRESENTATIONS):
-                region = (edges[k], 0, edges[k + 1] - edges[k], dh)
-                self._draw(camera, region, mode, stats, measure)
-        else:
-            self._draw(camera, (0, 0, dw, dh), self.mode, stats, measure)
+        stats.t_o_ms = (time.perf_counter() - t_clear) * 1000.0
+        for (region, _), query in zip(views, queries, strict=True):
+            self._draw(region, query, stats, measure)
         t1 = time.perf_counter()
         if preview:
             self.present.scale_up(fbo, out, size)
@@ -299,17 +305,10 @@ class FramePipeline:
         stats.t_a_ms = (end - t0) * 1000.0
         return stats
 
-    def _draw(
-        self,
-        camera: Camera,
-        region: tuple[int, int, int, int],
-        mode: str,
-        stats: FrameStats,
-        measure: bool,
-    ) -> None:
-        """Ground, props and grass of one view into `region` of the bound framebuffer; the
-        statistics add up over the regions of a frame."""
-        ctx = self.ctx
+    def _query(
+        self, camera: Camera, region: tuple[int, int, int, int], mode: str, stats: FrameStats
+    ) -> tuple[FrameUniforms, list]:
+        """One view's frame uniforms and, per grass type, the cells it draws (t_q)."""
         _, _, w, h = region
         tq = time.perf_counter()
         frame = FrameUniforms(
@@ -322,6 +321,37 @@ class FramePipeline:
             height_scale=self.terrain.height_scale if self.terrain is not None else 0.0,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
+        frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
+        tq = time.perf_counter()
+        occupancy = self.occupancy()
+        cells = [
+            draw_list(
+                mode,
+                grass.lod,
+                camera.eye,
+                self.terrain,
+                self._instances,
+                frustum,
+                self.slice_params.slices,
+                occupancy,
+                grass.density_channel,
+            )
+            for grass in self.grass_types
+        ]
+        stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
+        return frame, cells
+
+    def _draw(
+        self,
+        region: tuple[int, int, int, int],
+        query: tuple[FrameUniforms, list],
+        stats: FrameStats,
+        measure: bool,
+    ) -> None:
+        """Ground, props and grass of one view into `region` of the bound framebuffer; the
+        statistics add up over the regions of a frame."""
+        ctx = self.ctx
+        frame, cells = query
         ctx.viewport = region
 
         def timed(fn) -> float:
@@ -336,27 +366,10 @@ class FramePipeline:
         self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
-        frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
-        tq = time.perf_counter()
-        occupancy = self.occupancy()
-        stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         drawn = []
-        for index, grass in enumerate(self.grass_types):
-            tq = time.perf_counter()
-            cells = draw_list(
-                mode,
-                grass.lod,
-                camera.eye,
-                self.terrain,
-                self._instances,
-                frustum,
-                self.slice_params.slices,
-                occupancy,
-                grass.density_channel,
-            )
+        for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
             tu = time.perf_counter()
-            stats.t_q_ms += (tu - tq) * 1000.0
-            batches = grass.upload(cells)
+            batches = grass.upload(selected)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
             patch = grass.patch
