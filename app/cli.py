@@ -109,6 +109,27 @@ def parser() -> argparse.ArgumentParser:
         help="terrain size WxH in cells (default: the scene's); the maps are resampled",
     )
 
+    q = sub.add_parser("quality", help="LOD frame against all-geometry: FLIP, floor, popping")
+    q.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
+    q.add_argument("--project", type=Path, help="project file (instead of --scene)")
+    q.add_argument(
+        "--camera",
+        action="append",
+        help="named camera (repeat for several; default: the "
+        "scene's default camera unless --path is given)",
+    )
+    q.add_argument("--path", help="camera path: popping and agreement along it")
+    q.add_argument("--frames", type=int, default=8, help="frames along --path (default 8)")
+    q.add_argument("--size", type=_size, default=(480, 270), help="image size WxH")
+    q.add_argument(
+        "--budget",
+        type=float,
+        default=120.0,
+        help="seconds an all-geometry reference may be expected to take; beyond, it is "
+        "estimated instead of drawn (default 120)",
+    )
+    q.add_argument("--out", type=Path, help="folder for quality.json and the heat maps")
+
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
     b = sub.add_parser("bench", help="run the benchmarks and write JSON")
@@ -239,6 +260,39 @@ def cmd_profile(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_quality(args: argparse.Namespace) -> int:
+    from app.quality import quality
+
+    document = _document(args)
+    for name in args.camera or []:
+        if name not in document.cameras:
+            raise CliError(
+                f"unknown camera {name!r} for scene {document.name}; "
+                f"cameras: {', '.join(document.cameras)}"
+            )
+    if args.path is not None and args.path not in document.paths:
+        known = ", ".join(document.paths) or "none"
+        raise CliError(
+            f"unknown camera path {args.path!r} for scene {document.name}; paths: {known}"
+        )
+    if not 2 <= args.frames <= 1000:
+        raise CliError(f"--frames {args.frames} out of range; allowed 2 … 1000")
+    if not args.budget > 0:
+        raise CliError(f"--budget {args.budget:g} out of range; give seconds above 0")
+    if args.out is not None:
+        if args.out.exists() and not args.out.is_dir():
+            raise CliError(f"--out {args.out}: not a folder")
+        try:
+            args.out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise CliError(f"cannot make {args.out}: {exc.strerror or exc}") from None
+        _writable(args.out / "quality.json")
+    cameras = args.camera or ([] if args.path else [document.default_camera])
+    text, _ = quality(document, args.size, cameras, args.path, args.frames, args.out, args.budget)
+    print(text)
+    return 0
+
+
 def cmd_scenes(_: argparse.Namespace) -> int:
     for scene in SCENES.values():
         print(f"{scene.name:12s} {scene.description}")
@@ -313,6 +367,7 @@ def main(argv: list[str] | None = None) -> int:
         "new": cmd_new,
         "info": cmd_info,
         "bench": cmd_bench,
+        "quality": cmd_quality,
     }[args.command]
     name = f"sward {args.command}" if args.command else "sward"
     try:

@@ -305,6 +305,17 @@ class FramePipeline:
         stats.t_a_ms = (end - t0) * 1000.0
         return stats
 
+    def geometry_triangles(self, camera: Camera, size: tuple[int, int], mode: str) -> int:
+        """The blade triangles a frame of `mode` would draw at this camera, from its query alone
+        (nothing drawn): what `sward quality` weighs before drawing an all-geometry reference."""
+        stats = FrameStats(width=size[0], height=size[1])
+        _, cells = self._query(camera, (0, 0, *size), mode, stats)
+        total = 0
+        for grass, selected in zip(self.grass_types, cells, strict=True):
+            count = int(selected.batches.get(("geometry", 0), np.zeros(0)).size)
+            total += _blades(grass, count)[1]
+        return total
+
     def _query(
         self, camera: Camera, region: tuple[int, int, int, int], mode: str, stats: FrameStats
     ) -> tuple[FrameUniforms, list]:
@@ -372,15 +383,14 @@ class FramePipeline:
             batches = grass.upload(selected)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
-            patch = grass.patch
             for (representation, slices), (_renderer, count) in batches.items():
                 stats.levels.append((index, representation, slices, count))
                 counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
                 setattr(stats, counter, getattr(stats, counter) + count)
-                if representation == "geometry" and patch is not None:
-                    visible = int(np.count_nonzero(patch.thresholds <= grass.geometry.density))
-                    stats.blades += visible * count
-                    stats.triangles += visible * count * patch.params.subdivisions * 2
+                if representation == "geometry":
+                    blades, triangles = _blades(grass, count)
+                    stats.blades += blades
+                    stats.triangles += triangles
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
         order = {"geometry": 0, "image": 1, "volume": 2}
@@ -410,6 +420,15 @@ class FramePipeline:
             release_fbo(fbo)
         self._targets.clear()
         self.present.release()
+
+
+def _blades(grass, count: int) -> tuple[int, int]:
+    """The blades and triangles `count` geometry instances of a grass type draw."""
+    patch = grass.patch
+    if patch is None or not count:
+        return 0, 0
+    visible = int(np.count_nonzero(patch.thresholds <= grass.geometry.density))
+    return visible * count, visible * count * patch.params.subdivisions * 2
 
 
 def _passes(renderer, frame: FrameUniforms) -> None:

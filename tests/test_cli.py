@@ -203,3 +203,55 @@ def test_a_malformed_project_is_one_line_and_exit_2(tmp_path):
     assert r.returncode == 2 and "Traceback" not in r.stderr
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "p.sward" in lines[0] and ".near" in lines[0], lines
+
+
+def test_quality_compares_lod_with_all_geometry(tmp_path):
+    r = sward(
+        "quality", "--scene", "patch-grid", "--camera", "default", "--size", "160x96",
+        "--out", str(tmp_path),
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "LOD against all-geometry" in r.stdout
+    data = json.loads((tmp_path / "quality.json").read_text())
+    (row,) = data["cameras"]
+    assert row["camera"] == "default"
+    lod, floor = row["lod"], row["floor"]
+    # the LOD frame differs from all-geometry, and by more than blade detail alone does
+    assert 0 < floor["flip_quarter"] < lod["flip_quarter"] < 0.5
+    assert row["over_floor"] == pytest.approx(lod["flip_quarter"] / floor["flip_quarter"])
+    assert row["speedup"] > 0 and row["geometry_ms"] > 0
+    # the scene's three representations each cover part of the frame
+    assert all(row["techniques"][t]["pixels"] > 50 for t in ("geometry", "volume", "image"))
+    heat = np.asarray(Image.open(tmp_path / "default-flip.png"))
+    assert heat.shape[:2] == (96, 160) and heat.max() > 0
+    assert (tmp_path / "default-lod.png").is_file()
+
+
+def test_quality_estimates_a_reference_beyond_its_budget_and_measures_popping(tmp_path):
+    r = sward("quality", "--scene", "patch-grid", "--size", "96x64", "--budget", "1e-6")
+    assert r.returncode == 0, r.stderr
+    assert "not drawn" in r.stdout and "estimated" in r.stdout
+    r = sward(
+        "quality", "--scene", "patch-grid", "--path", "orbit", "--frames", "3", "--size", "96x64",
+        "--out", str(tmp_path),
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    path = json.loads((tmp_path / "quality.json").read_text())["path"]
+    assert path["frames"] == 3 and path["popping"] > 0
+    assert path["reference_max_change"] > 0
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--camera", "nowhere"], "unknown camera 'nowhere'"),
+        (["--path", "nowhere"], "unknown camera path 'nowhere'"),
+        (["--frames", "1", "--path", "orbit"], "--frames 1 out of range"),
+        (["--budget", "0"], "--budget 0 out of range"),
+    ],
+)
+def test_quality_refuses_bad_input_in_one_line(args, words):
+    r = sward("quality", "--scene", "patch-grid", *args)
+    assert r.returncode == 2
+    assert words in r.stderr and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1

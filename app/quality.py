@@ -1,0 +1,231 @@
+"""`sward quality`: the LOD frame against an all-geometry reference at each camera, or along a
+camera path (core/quality.py has the figures). Per camera: FLIP at full and quarter resolution,
+the 8 × 8 block colour difference, the floor (two reference frames a blade's width apart), the
+figure over each technique's screen region and its ratio to the floor there, and the speed-up of
+LOD over all-geometry; along a path, popping. Writes JSON and heat maps (--out DIR).
+
+An all-geometry reference can take far longer than the LOD frame (the football's 134,000 visible
+cells of 5000 blades on llvmpipe: the better part of an hour). Its triangles are counted from
+the query first; when drawing them would take longer than the budget at the geometry speed the
+LOD frame showed, the reference is not drawn and the speed-up is estimated."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from core.camera import Camera
+from core.document import Document
+from core.quality import Comparison, heat_map, popping, quarter_mask, technique_regions
+
+BUDGET_S = 120.0  # longest an all-geometry reference frame may be expected to take
+TRIANGLES_PER_S = 5e6  # llvmpipe's blade throughput (DESIGN.md) when a frame draws no geometry
+
+
+def technique_colors() -> dict[str, list[tuple[float, float, float]]]:
+    from render.geometry import GeometryRenderer
+    from render.grass_type import volume_technique_color
+    from render.image import ImageRenderer
+
+    return {
+        "geometry": [GeometryRenderer.technique_color],
+        "volume": [volume_technique_color(n) for n in (1, 2, 4, 8, 16)],
+        "image": [ImageRenderer.technique_color],
+    }
+
+
+def shifted(camera: Camera, distance: float) -> Camera:
+    """The camera moved sideways by `distance` (eye and target alike)."""
+    right = camera.view()[0, :3].astype(np.float64)
+    eye, target = np.asarray(camera.eye), np.asarray(camera.target)
+    return Camera.from_eye_target(
+        eye + distance * right,
+        target + distance * right,
+        fov_y=camera.fov_y,
+        near=camera.near,
+        far=camera.far,
+    )
+
+
+class QualityRun:
+    """The renderers one `sward quality` run needs, on one context: LOD (shaded, and in the
+    technique colours for the regions) and all-geometry."""
+
+    def __init__(self, document: Document, size: tuple[int, int], budget_s: float) -> None:
+        from render.context import standalone
+        from render.headless import HeadlessRenderer
+
+        self.size = size
+        self.budget_s = budget_s
+        self.ctx = standalone()
+        self.lod = HeadlessRenderer(document, self.ctx)
+        self.geometry = HeadlessRenderer(document, self.ctx, mode="geometry")
+        self.blade_width = float(document.params(0).width_max)
+        self._throughput: float | None = None  # triangles per second measured in LOD frames
+
+    def release(self) -> None:
+        for renderer in (self.lod, self.geometry):
+            renderer.release()
+        self.ctx.release()
+
+    def lod_frame(self, camera: Camera):
+        self.lod.render(camera, self.size, measure=False)  # shaders compile, slices convert
+        image, stats = self.lod.render(camera, self.size, measure=True)
+        if stats.triangles and stats.t_g_ms > 0:
+            self._throughput = stats.triangles / (stats.t_g_ms / 1000.0)
+        return image, stats
+
+    def reference_estimate_s(self, camera: Camera) -> tuple[int, float]:
+        triangles = self.geometry.pipeline.geometry_triangles(camera, self.size, "geometry")
+        return triangles, triangles / (self._throughput or TRIANGLES_PER_S)
+
+    def reference(self, camera: Camera):
+        return self.geometry.render(camera, self.size, measure=True)
+
+    def camera_figures(self, name: str, camera: Camera, out: Path | None) -> dict:
+        lod_image, lod_stats = self.lod_frame(camera)
+        row: dict = {"camera": name, "lod_ms": lod_stats.t_a_ms}
+        triangles, estimate = self.reference_estimate_s(camera)
+        row["reference_triangles"] = triangles
+        if estimate > self.budget_s:
+            row["reference"] = (
+                f"not drawn: {triangles:,} blade triangles, estimated {estimate:.3g} s "
+                f"(budget {self.budget_s:g} s)"
+            )
+            row["speedup_estimated"] = estimate * 1000.0 / max(lod_stats.t_a_ms, 1e-3)
+            return row
+        reference, ref_stats = self.reference(camera)
+        floor_image, _ = self.geometry.render(
+            shifted(camera, self.blade_width), self.size, measure=False
+        )
+        self.lod.pipeline.view = "techniques"
+        try:
+            tech_image, _ = self.lod.render(camera, self.size, measure=False)
+        finally:
+            self.lod.pipeline.view = "shaded"
+        lod = Comparison.of(reference, lod_image)
+        floor = Comparison.of(reference, floor_image)
+        row.update(
+            {
+                "geometry_ms": ref_stats.t_a_ms,
+                "speedup": ref_stats.t_a_ms / max(lod_stats.t_a_ms, 1e-3),
+                "lod": lod.to_dict(),
+                "floor": floor.to_dict(),
+                "over_floor": lod.flip_quarter / max(floor.flip_quarter, 1e-9),
+                "techniques": {},
+            }
+        )
+        regions = technique_regions(lod_image, tech_image, technique_colors())
+        for technique, mask in regions.items():
+            q = quarter_mask(mask)
+            here, base = lod.region(q), floor.region(q)
+            row["techniques"][technique] = {
+                "pixels": int(mask.sum()),
+                "flip_quarter": here,
+                "floor": base,
+                "over_floor": None if here is None or not base else here / base,
+            }
+        if out is not None:
+            from PIL import Image
+
+            stem = out / name
+            Image.fromarray(lod_image).save(f"{stem}-lod.png")
+            Image.fromarray(reference).save(f"{stem}-geometry.png")
+            heat = heat_map(lod.quarter_map).repeat(4, axis=0).repeat(4, axis=1)
+            Image.fromarray(heat).save(f"{stem}-flip.png")
+            row["heat_map"] = f"{stem}-flip.png"
+        return row
+
+    def path_figures(self, name: str, cameras: list[Camera]) -> dict:
+        lod_frames, references = [], []
+        for camera in cameras:
+            lod_frames.append(self.lod_frame(camera)[0])
+            triangles, estimate = self.reference_estimate_s(camera)
+            if estimate > self.budget_s:
+                return {
+                    "path": name,
+                    "reference": f"not drawn: {triangles:,} blade triangles at a path frame, "
+                    f"estimated {estimate:.3g} s (budget {self.budget_s:g} s)",
+                }
+            references.append(self.reference(camera)[0])
+        flips = [
+            Comparison.of(r, x).flip_quarter for r, x in zip(references, lod_frames, strict=True)
+        ]
+        return {
+            "path": name,
+            "frames": len(cameras),
+            "flip_quarter_mean": float(np.mean(flips)),
+            "flip_quarter_max": float(np.max(flips)),
+            **popping(lod_frames, references),
+        }
+
+
+def quality(
+    document: Document,
+    size: tuple[int, int],
+    cameras: list[str],
+    path: str | None,
+    frames: int,
+    out: Path | None,
+    budget_s: float = BUDGET_S,
+) -> tuple[str, dict]:
+    """Render and compare; the printed table and the JSON document."""
+    run = QualityRun(document, size, budget_s)
+    result: dict = {"scene": document.name, "size": list(size), "cameras": []}
+    try:
+        if path is not None:
+            result["path"] = run.path_figures(path, document.path_cameras(path, frames))
+        for name in cameras:
+            result["cameras"].append(run.camera_figures(name, document.camera(name), out))
+    finally:
+        run.release()
+    text = report(result)
+    if out is not None:
+        target = out / "quality.json"
+        target.write_text(json.dumps(result, indent=2) + "\n")
+        text += f"\nwrote {target} and heat maps in {out}"
+    return text, result
+
+
+def _f(value, digits: int = 3) -> str:
+    return "-" if value is None else f"{value:.{digits}f}"
+
+
+def report(result: dict) -> str:
+    w, h = result["size"]
+    lines = [f"{result['scene']} at {w}x{h}: LOD against all-geometry"]
+    for row in result["cameras"]:
+        if "lod" not in row:
+            lines.append(
+                f"  {row['camera']}: reference {row['reference']}; "
+                f"speed-up of LOD about {row['speedup_estimated']:.0f}x"
+            )
+            continue
+        lod, floor = row["lod"], row["floor"]
+        lines.append(
+            f"  {row['camera']}: FLIP {_f(lod['flip_full'])} full, {_f(lod['flip_quarter'])} "
+            f"quarter (floor {_f(floor['flip_quarter'])}, {row['over_floor']:.2f}x), "
+            f"block colour {_f(lod['block_color'])} (floor {_f(floor['block_color'])}), "
+            f"LOD {row['lod_ms']:.0f} ms vs geometry {row['geometry_ms']:.0f} ms "
+            f"({row['speedup']:.1f}x)"
+        )
+        for technique, t in row["techniques"].items():
+            if t["pixels"]:
+                lines.append(
+                    f"    {technique:9s} {t['pixels']:7d} px  FLIP {_f(t['flip_quarter'])} "
+                    f"quarter, floor {_f(t['floor'])}, {_f(t['over_floor'], 2)}x the floor"
+                )
+    p = result.get("path")
+    if p is not None:
+        if "popping" in p:
+            lines.append(
+                f"  path {p['path']} ({p['frames']} frames): FLIP quarter mean "
+                f"{_f(p['flip_quarter_mean'])}, max {_f(p['flip_quarter_max'])}; popping "
+                f"{p['popping']:.2f} (largest change {_f(p['lod_max_change'])} against "
+                f"{_f(p['reference_max_change'])})"
+            )
+        else:
+            lines.append(f"  path {p['path']}: reference {p['reference']}")
+    return "\n".join(lines)

@@ -1,0 +1,110 @@
+"""How far the LOD frame is from an all-geometry reference (issue: the LOD image matches
+all-geometry): the figures `sward quality` reports, on images alone (no GL).
+
+- FLIP at full and at quarter resolution (core/image_diff.py);
+- the mean colour difference of 8 × 8 pixel blocks (a representation that is darker or paler
+  over an area shows here even where FLIP's blade-level noise hides it);
+- the floor: the same figure between two reference frames a blade's width apart, which is what
+  blade detail alone differs by — a LOD frame is as good as it gets at about the floor;
+- the figure over each technique's screen region, from a frame drawn in the technique colours
+  (geometry red, volume yellow, image-based blue);
+- popping along a camera path: the largest frame-to-frame change of the LOD sequence over the
+  largest of the reference sequence.
+
+Images are (h, w, 3) uint8 arrays or floats in 0 … 1, top row first."""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from core.image_diff import QUARTER, downsample, flip, to_float
+
+BLOCK = 8  # pixels a side of the blocks whose mean colours are compared
+TECHNIQUES = ("geometry", "volume", "image")
+_GRASS_CHANGE = 0.03  # a pixel the technique view recolours by more than this is grass
+
+
+def block_color_difference(reference: np.ndarray, test: np.ndarray, block: int = BLOCK) -> float:
+    """Mean over BLOCK × BLOCK blocks of the length of the difference of their mean RGB (0 … √3)."""
+    a, b = downsample(reference, block), downsample(test, block)
+    return float(np.linalg.norm(a - b, axis=-1).mean())
+
+
+def technique_regions(
+    shaded: np.ndarray, techniques: np.ndarray, colors: dict[str, list[tuple[float, float, float]]]
+) -> dict[str, np.ndarray]:
+    """Per technique, the pixels its grass covers: where the technique view differs from the
+    shaded frame (the view recolours grass only), by the nearest chromaticity among `colors`
+    (technique -> the colours its levels are drawn in, render/)."""
+    s, t = to_float(shaded), to_float(techniques)
+    if s.shape != t.shape:
+        raise ValueError(f"images differ in size: {s.shape[:2]} and {t.shape[:2]}")
+    grass = np.abs(s - t).max(axis=-1) > _GRASS_CHANGE
+    names = [name for name in TECHNIQUES for _ in colors.get(name, [])]
+    ref = np.array([c for name in TECHNIQUES for c in colors.get(name, [])], np.float32)
+    ref /= ref.sum(axis=-1, keepdims=True)
+    chroma = t / np.maximum(t.sum(axis=-1, keepdims=True), 1e-6)
+    nearest = np.argmin(((chroma[..., None, :] - ref) ** 2).sum(axis=-1), axis=-1)
+    owner = np.array([TECHNIQUES.index(n) for n in names])[nearest]
+    return {name: grass & (owner == k) for k, name in enumerate(TECHNIQUES)}
+
+
+def quarter_mask(mask: np.ndarray) -> np.ndarray:
+    """A pixel mask at quarter resolution: blocks mostly inside the mask."""
+    m = mask[..., None].astype(np.float32).repeat(3, axis=-1)
+    return downsample(m, QUARTER)[..., 0] > 0.5
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A test frame against a reference: FLIP full and quarter, block colour difference, and
+    the quarter-resolution FLIP map (for region figures and heat maps)."""
+
+    flip_full: float
+    flip_quarter: float
+    block_color: float
+    quarter_map: np.ndarray
+
+    @classmethod
+    def of(cls, reference: np.ndarray, test: np.ndarray) -> Comparison:
+        full, _ = flip(reference, test)
+        quarter, qmap = flip(reference, test, QUARTER)
+        qmap = qmap.reshape(qmap.shape[0], qmap.shape[1])  # flip gives (h, w, 1)
+        return cls(full, quarter, block_color_difference(reference, test), qmap)
+
+    def region(self, mask_quarter: np.ndarray) -> float | None:
+        """Mean quarter-resolution FLIP over a region (None where it is empty)."""
+        h, w = self.quarter_map.shape[:2]
+        m = mask_quarter[:h, :w]
+        return float(self.quarter_map[m].mean()) if m.any() else None
+
+    def to_dict(self) -> dict:
+        return {
+            "flip_full": self.flip_full,
+            "flip_quarter": self.flip_quarter,
+            "block_color": self.block_color,
+        }
+
+
+def popping(lod_frames: list[np.ndarray], reference_frames: list[np.ndarray]) -> dict:
+    """The largest quarter-resolution FLIP between consecutive frames of the LOD sequence, the
+    same of the reference sequence, and their ratio (1: the LOD frames change from frame to
+    frame no more than the grass itself does)."""
+    if len(lod_frames) != len(reference_frames) or len(lod_frames) < 2:
+        raise ValueError("popping needs two sequences of the same length, two frames or more")
+
+    def largest(frames):
+        return max(flip(a, b, QUARTER)[0] for a, b in itertools.pairwise(frames))
+
+    lod, ref = largest(lod_frames), largest(reference_frames)
+    return {"lod_max_change": lod, "reference_max_change": ref, "popping": lod / max(ref, 1e-9)}
+
+
+def heat_map(error: np.ndarray) -> np.ndarray:
+    """An error map (0 … 1) as an RGB uint8 image: black through red and yellow to white."""
+    e = np.clip(np.asarray(error, np.float32), 0.0, 1.0)
+    rgb = np.stack([np.clip(3 * e, 0, 1), np.clip(3 * e - 1, 0, 1), np.clip(3 * e - 2, 0, 1)], -1)
+    return np.rint(rgb * 255).astype(np.uint8)

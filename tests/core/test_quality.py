@@ -1,0 +1,94 @@
+"""The figures of `sward quality` (core/quality.py) on images made to have known answers."""
+
+import numpy as np
+import pytest
+
+from core.quality import (
+    Comparison,
+    block_color_difference,
+    heat_map,
+    popping,
+    quarter_mask,
+    technique_regions,
+)
+
+RNG = np.random.default_rng(3)
+COLORS = {
+    "geometry": [(1.0, 0.15, 0.1)],
+    "volume": [(1.0, 0.85, 0.1), (1.0, 0.95, 0.45)],
+    "image": [(0.15, 0.35, 1.0)],
+}
+
+
+def grass(h=64, w=96):
+    """A noisy green picture, uint8."""
+    base = np.array([60, 110, 40], np.float32)
+    return np.clip(base + RNG.normal(0, 25, (h, w, 3)), 0, 255).astype(np.uint8)
+
+
+def test_block_colour_difference_sees_a_darker_area_and_not_noise():
+    a = grass()
+    assert block_color_difference(a, a) == 0.0
+    darker = a.copy()
+    darker[:, :48] = (darker[:, :48] * 0.75).astype(np.uint8)  # the left half 25 % darker
+    shuffled = a.copy()
+    for row in shuffled:  # the same colours, moved about within each row of 8 × 8 blocks
+        RNG.shuffle(row[:8])
+    assert block_color_difference(a, darker) > 0.03
+    assert block_color_difference(a, shuffled) < 0.5 * block_color_difference(a, darker)
+
+
+def test_technique_regions_from_the_technique_view():
+    shaded = grass()
+    tech = shaded.copy()
+    tech[:20, :30] = (np.array(COLORS["geometry"][0]) * 180).astype(np.uint8)
+    tech[20:40, :30] = (np.array(COLORS["volume"][1]) * 150).astype(np.uint8)  # a paler level
+    tech[40:, :30] = (np.array(COLORS["image"][0]) * 200).astype(np.uint8)
+    regions = technique_regions(shaded, tech, COLORS)
+    assert regions["geometry"][:20, :30].all() and regions["geometry"].sum() == 600
+    assert regions["volume"][20:40, :30].all() and regions["volume"].sum() == 600
+    assert regions["image"][40:, :30].all() and regions["image"].sum() == 24 * 30
+    # what the view left alone (sky, soil, props) is no technique's
+    assert not any(m[:, 30:].any() for m in regions.values())
+
+
+def test_quarter_mask_keeps_blocks_mostly_inside():
+    mask = np.zeros((16, 16), bool)
+    mask[:8, :6] = True
+    q = quarter_mask(mask)
+    assert q.shape == (4, 4)
+    assert q[:2, 0].all() and not q[:2, 1].any() and not q[2:].any()
+
+
+def test_comparison_of_identical_frames_is_zero_and_of_a_changed_one_is_not():
+    a = grass(128, 96)
+    same = Comparison.of(a, a)
+    assert (same.flip_full, same.flip_quarter, same.block_color) == (0.0, 0.0, 0.0)
+    b = a.copy()
+    b[:64] = 255 - b[:64]  # the top half inverted
+    changed = Comparison.of(a, b)
+    assert changed.flip_quarter > 0.1 and changed.block_color > 0.1
+    top, bottom = np.zeros((32, 24), bool), np.zeros((32, 24), bool)
+    top[:12], bottom[20:] = True, True  # quarter resolution, away from the edge FLIP blurs
+    assert changed.region(top) > 10 * changed.region(bottom)
+    assert changed.region(np.zeros((32, 24), bool)) is None
+
+
+def test_popping_is_the_lods_largest_step_over_the_references():
+    frames = [grass() for _ in range(4)]
+    assert popping(frames, frames)["popping"] == pytest.approx(1.0)
+    # a LOD sequence that holds still and then jumps, against a reference that changes evenly
+    reference = [np.clip(frames[0].astype(int) + 6 * k, 0, 255).astype(np.uint8) for k in range(4)]
+    jump = [reference[0]] * 3 + [np.clip(reference[0].astype(int) + 18, 0, 255).astype(np.uint8)]
+    result = popping(jump, reference)
+    assert result["popping"] > 1.5
+    with pytest.raises(ValueError, match="two frames"):
+        popping(frames[:1], frames[:1])
+
+
+def test_heat_map_runs_from_black_to_white():
+    h = heat_map(np.array([[0.0, 0.5, 1.0, 2.0]]))
+    assert h.dtype == np.uint8 and h.shape == (1, 4, 3)
+    assert h[0, 0].tolist() == [0, 0, 0] and h[0, 2].tolist() == [255, 255, 255]
+    assert h[0, 1, 0] == 255 and h[0, 1, 2] == 0  # half way: red, some yellow
+    assert h[0, 3].tolist() == [255, 255, 255]  # clipped
