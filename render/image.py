@@ -55,6 +55,11 @@ class ImageRenderer:
     density_channel = 0  # the grass type's channel of the density map (render/layer.py)
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
+    # The slice lies at this fraction of its grass type's height, where what it shows (the
+    # patch seen from above) is: there the far terrain's silhouette is the grass's, as in the
+    # geometry, and of two grass types the taller one's slice lies in front of the shorter's,
+    # which at one height would hide it wherever both grow (thesis 6.4.5).
+    canopy = 0.7
     alpha_ref = 0.2
     grazing_lean = 0.4  # see shaders/image.glsl: matches the volume zone's brightness
     flat_ground = 0.5 * lift  # a cell whose ground varies less is one quad (set_instances)
@@ -84,7 +89,7 @@ class ImageRenderer:
         p = self.program
         frame.apply(p, self.technique_color)
         p["u_density_channel"].value = self.density_channel
-        p["u_lift"].value = self.lift
+        p["u_lift"].value = self.lift + self.canopy * float(self.textures.height)
         p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_grazing_lean"].value = self.grazing_lean
         p["u_density"].value = float(self.density)

@@ -4,6 +4,7 @@ placed by its own channel of the density map, sharing terrain and light maps."""
 import dataclasses
 
 import numpy as np
+import pytest
 
 from app.scenes import GrassRecipe, get_scene
 from core.lod import LodConfig
@@ -41,3 +42,25 @@ def test_a_second_grass_type_grows_only_where_its_density_channel_says(headless,
     assert right.mean() < 0.02  # and nowhere else
     assert sb.c_g > sa.c_g  # its cells are drawn too
     assert sb.blades > sa.blades
+
+
+MEADOW_TALL = dataclasses.replace(get_scene("meadow").grass[0], density_map=left_half)
+
+
+@pytest.mark.parametrize("only", ["geometry", "volume", "image"])
+def test_the_meadows_second_grass_type_shows_in_every_representation(headless, only):
+    """Drawn by one representation throughout, the meadow's tall grass shows where its channel
+    says, beside and above the first type (an image-based slice at the first type's height
+    would hide it wherever both grow)."""
+    one = dataclasses.replace(BASE, params=BASE.params.replace(blade_count=500), mirror_seed=None)
+    two = dataclasses.replace(one, grass=(MEADOW_TALL,))
+    camera = one.document().camera("default")
+    a, _ = headless(one.document(), mode=only).render(camera, SIZE)
+    b, _ = headless(two.document(), mode=only).render(camera, SIZE)
+    changed = np.abs(a.astype(int) - b.astype(int)).max(axis=-1) > 20
+    left, right = changed[:, : SIZE[0] // 2], changed[:, SIZE[0] // 2 :]
+    assert left.mean() > 0.1
+    assert left.mean() > 4 * right.mean()
+    # its yellow tips: the tall grass's half is yellower than the same half without it
+    yellow = (b[:, : SIZE[0] // 2, 0].astype(int) - b[:, : SIZE[0] // 2, 2]).mean()
+    assert yellow > (a[:, : SIZE[0] // 2, 0].astype(int) - a[:, : SIZE[0] // 2, 2]).mean() + 3
