@@ -49,7 +49,7 @@ class Scene:
     # (width, height) -> RGBA colour-modulation map replacing the procedural one
     colour_map: Callable[[int, int], np.ndarray] | None = None
     map_size: tuple[int, int] = (256, 256)
-    props: tuple = ()  # ((x, z), (w, h, d), (r, g, b)[, lift]) rows
+    props: tuple = ()  # ((x, z), (w, h, d), (r, g, b)[, lift[, shape]]) rows
     fog_distance: float = 160.0  # world units (core/lighting.py)
     paths: dict[str, tuple[CameraSpec, ...]] = field(default_factory=dict)  # for profiling
     # (width, height) -> (height, width) arrays in 0 … 1 for the stack's height and density maps
@@ -283,10 +283,10 @@ SCENES["meadow"] = Scene(
             density_map=_meadow_clumps,
         ),
     ),
-    props=(
-        ((6.0, 10.0), (1.2, 0.9, 1.0), (0.45, 0.44, 0.42)),
-        ((-9.0, -4.0), (2.0, 1.4, 1.6), (0.5, 0.48, 0.45)),
-        ((12.0, -12.0), (0.8, 0.6, 0.9), (0.42, 0.41, 0.4)),
+    props=(  # rocks, a little sunk into the ground
+        ((6.0, 10.0), (1.2, 0.9, 1.0), (0.45, 0.44, 0.42), -0.1, "rock"),
+        ((-9.0, -4.0), (2.0, 1.4, 1.6), (0.5, 0.48, 0.45), -0.15, "rock"),
+        ((12.0, -12.0), (0.8, 0.6, 0.9), (0.42, 0.41, 0.4), -0.08, "rock"),
     ),
     paths={
         "walk": (

@@ -62,13 +62,14 @@ class GrassType:
 
 @dataclass(frozen=True)
 class Prop:
-    """A box standing in the grass: centre (x, z), size (w, h, d), colour, lift above the ground
-    under its centre (a crossbar)."""
+    """A box or a rock standing in the grass: centre (x, z), size (w, h, d), colour, lift above
+    the ground under its centre (a crossbar); `shape` "box" or "rock" (core/props.py)."""
 
     position: tuple[float, float]
     size: tuple[float, float, float]
     color: tuple[float, float, float]
     lift: float = 0.0
+    shape: str = "box"
 
 
 @dataclass(frozen=True)
@@ -280,7 +281,8 @@ class Document:
     def prop_boxes(self) -> np.ndarray:
         """The props, standing on the ground where they are (their lift added to it)."""
         return boxes(
-            (p.position, p.size, p.color, p.lift + self.ground_at(*p.position)) for p in self.props
+            (p.position, p.size, p.color, p.lift + self.ground_at(*p.position), p.shape)
+            for p in self.props
         )
 
     # -- comparison --------------------------------------------------------------------------

@@ -84,11 +84,14 @@ def _camera_from(data: dict) -> CameraSpec:
 
 
 def _prop(prop: Prop) -> list:
-    return [list(prop.position), list(prop.size), list(prop.color), prop.lift]
+    row = [list(prop.position), list(prop.size), list(prop.color), prop.lift]
+    return row if prop.shape == "box" else [*row, prop.shape]
 
 
 def _prop_from(row: list) -> Prop:
-    return Prop(_floats(row[0], 2), _floats(row[1], 3), _floats(row[2], 3), float(*row[3:4] or [0]))
+    lift = float(row[3]) if len(row) > 3 else 0.0
+    shape = str(row[4]) if len(row) > 4 else "box"
+    return Prop(_floats(row[0], 2), _floats(row[1], 3), _floats(row[2], 3), lift, shape)
 
 
 def _light(light: Lighting) -> dict:

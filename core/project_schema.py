@@ -122,8 +122,11 @@ class Slices(msgspec.Struct, forbid_unknown_fields=True):
     top: Annotated[int, Meta(ge=16, le=2048)] = 128
 
 
-# a prop: [[x, z], [w, h, d], [r, g, b]] and an optional lift
-PropRow = Annotated[list[Annotated[list[Finite], Meta(max_length=3)] | Finite], Meta(max_length=4)]
+# a prop: [[x, z], [w, h, d], [r, g, b]], an optional lift and an optional shape
+PropRow = Annotated[
+    list[Annotated[list[Finite], Meta(max_length=3)] | Finite | Literal["box", "rock"]],
+    Meta(max_length=5),
+]
 
 
 class Project(msgspec.Struct, forbid_unknown_fields=True):
@@ -152,8 +155,12 @@ class Project(msgspec.Struct, forbid_unknown_fields=True):
             raise ValueError(f"default_camera {self.default_camera!r} is not one of the cameras")
         for i, row in enumerate(self.props):
             shapes = [len(v) if isinstance(v, list) else 0 for v in row]
-            if shapes[:3] != [2, 3, 3] or (len(row) == 4 and shapes[3] != 0):
-                raise ValueError(f"props[{i}] must be [[x, z], [w, h, d], [r, g, b], lift]")
+            tail = [isinstance(v, str) for v in row[3:]]  # lift, shape
+            if shapes[:3] != [2, 3, 3] or tail not in ([], [False], [False, True]):
+                raise ValueError(
+                    f"props[{i}] must be [[x, z], [w, h, d], [r, g, b], lift, shape]"
+                    ' (shape "box" or "rock")'
+                )
             size, colour = cast(list, row[1]), cast(list, row[2])
             if min(size) <= 0 or not all(0.0 <= c <= 1.0 for c in colour):
                 raise ValueError(f"props[{i}]: size must be positive, colour in 0 … 1")

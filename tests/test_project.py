@@ -34,6 +34,7 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     assert loaded.same_as(doc)
     assert np.array_equal(loaded.terrain.cell_max, doc.terrain.cell_max)
     assert np.array_equal(loaded.prop_boxes(), doc.prop_boxes())
+    assert [p.shape for p in loaded.props] == ["rock"] * 3  # the meadow's rocks stay rocks
 
 
 def test_a_reopened_project_renders_the_same_image_with_its_lod(tmp_path, headless, meadow):

@@ -116,6 +116,14 @@ def test_camera_relations_props_and_non_numbers(good, tmp_path):
         "must be less than far": replaced(data, ("cameras", name, "near"), 1e6),
         "props": replaced(data, ("props",), [[[0, 0], [1, 1, 1], [1, 1, 1]]] * 90000),
         "props[0]": replaced(data, ("props",), [[[0, 0], [0, 1, 1], [1, 1, 1]]]),
+        "props[0][4]: invalid enum value 'pebble'": replaced(
+            data, ("props",), [[[0, 0], [1, 1, 1], [1, 1, 1], 0, "pebble"]]
+        ),
+        "props[1] must be": replaced(
+            data,
+            ("props",),
+            [[[0, 0], [1, 1, 1], [1, 1, 1]], [[0, 0], [1, 1, 1], [1, 1, 1], "rock"]],
+        ),
     }
     for words, variant in cases.items():
         path = tmp_path / "c.sward"

@@ -9,7 +9,7 @@ import pytest
 from app.scenes import get_scene
 from core.camera import Camera
 from core.props import boxes
-from render.props import _cube
+from render.props import _cube, _rock
 
 SCENE = get_scene("patch-grid")
 PARAMS = SCENE.params.replace(blade_count=1500)
@@ -25,7 +25,7 @@ def red(image):
 
 def test_cube_faces_point_outward():
     cube = _cube()
-    p, n = cube[:, :3], cube[:, 3:]
+    p, n = cube[:, :3], cube[:, 3:6]
     assert np.allclose(np.abs(n).sum(axis=1), 1)
     tri = p.reshape(-1, 3, 3)
     face_n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -52,3 +52,41 @@ def test_prop_standing_in_grass_is_partly_hidden(headless, only):
     seen_bottom = red(grass)[bottom].sum() / box[bottom].sum()
     assert seen_top > 0.9  # grass around and behind it does not draw over its upper part
     assert seen_bottom < 0.5  # its foot stands in the grass
+
+
+def test_rock_mesh_is_closed_faces_outward_and_fills_its_box():
+    rock = _rock()
+    p, n = rock[:, :3], rock[:, 3:6]
+    assert np.allclose(p.min(axis=0), -0.5, atol=1e-5) and np.allclose(
+        p.max(axis=0), 0.5, atol=1e-5
+    )
+    tri = p.reshape(-1, 3, 3)
+    face_n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    outward = np.sum(face_n * (tri.mean(axis=1) - p.mean(axis=0)), axis=1) > 0
+    assert outward.mean() > 0.97  # a lumpy sphere: nearly every face points away from its middle
+    assert np.allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-4)
+
+
+def test_a_rock_is_not_a_box(headless):
+    """The same prop as a box and as a rock: the rock's outline is round, not its bounding
+    rectangle, and its surface is shaded with hollows and grain, not flat faces."""
+    side = Camera.from_eye_target((0.0, 0.6, 3.0), (0.0, 0.45, 0.0))
+    grey = ((0.0, 0.0), (0.8, 0.9, 0.8), (0.6, 0.58, 0.55))
+    images = {}
+    for shape in ("box", "rock"):
+        prop = (*grey, 0.0, shape)
+        doc = dataclasses.replace(SCENE, params=PARAMS, density=0.0, props=(prop,)).document()
+        bare = dataclasses.replace(SCENE, params=PARAMS, density=0.0).document()
+        image, _ = headless(doc).render(side, SIZE)
+        ground, _ = headless(bare).render(side, SIZE)
+        images[shape] = (image, np.abs(image.astype(int) - ground.astype(int)).max(axis=-1) > 12)
+    box, rock = images["box"][1], images["rock"][1]
+    assert box.sum() > 2000 and rock.sum() > 0.4 * box.sum()
+
+    def fill(mask):  # of the bounding rectangle
+        rows, cols = np.nonzero(mask)
+        return mask.sum() / ((np.ptp(rows) + 1) * (np.ptp(cols) + 1))
+
+    assert fill(box) > 0.9 and fill(rock) < 0.85
+    luma = [images[s][0][images[s][1]].astype(float).mean(axis=-1) for s in ("box", "rock")]
+    assert luma[1].std() > 2 * luma[0].std()  # light and dark within the rock, flat on a face
