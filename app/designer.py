@@ -125,6 +125,7 @@ class DesignerWindow(QMainWindow):
         self.viewport.status_changed.connect(self._on_renderer_status)
         self.viewport.renderer_restarted.connect(self._on_renderer_restarted)
         self.viewport.frame_rendered.connect(self._on_frame)
+        self.viewport.quality_ready.connect(self._on_quality)
         for source in (self.viewport, self.map_view):
             source.paint_pressed.connect(self._paint_press)
             source.paint_moved.connect(self.painter.move)
@@ -286,6 +287,11 @@ class DesignerWindow(QMainWindow):
             self.profile_panel.add(stats)
         self._show_status(stats)
 
+    def _on_quality(self, figures: dict) -> None:
+        """The Quality view's figures: how far the frame is from all-geometry, over it and per
+        technique (quarter-resolution FLIP), and what LOD saves."""
+        self._show_status(self.viewport.last_stats)
+
     def _show_status(self, stats) -> None:
         busy = f"{self._renderer_status} · " if self._renderer_status else ""
         if stats.preview:  # a draft is timed as a whole only
@@ -300,6 +306,11 @@ class DesignerWindow(QMainWindow):
             f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {timing}"
             + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
         )
+        figures = self.viewport.quality_figures
+        if figures is not None:
+            self.status.setText(quality_text(figures))
+        elif self.viewport.quality and not busy:
+            self.status.setText("quality: waiting for the view to rest · " + self.status.text())
 
     def save_image_dialog(self) -> None:
         w, h = self.viewport.width(), self.viewport.height()
@@ -372,3 +383,19 @@ def run_designer(scene_name: str = DEFAULT_SCENE) -> int:
     window.show()
     window.autosave.recover_if_any()
     return app.exec()
+
+
+def quality_text(figures: dict) -> str:
+    """One status line of the Quality view's figures."""
+    lod = figures["lod"]
+    parts = [
+        f"{name} {t['flip_quarter']:.3f}"
+        for name, t in figures["techniques"].items()
+        if t["flip_quarter"] is not None
+    ]
+    return (
+        f"quality against all-geometry: FLIP {lod['flip_quarter']:.3f} (quarter resolution; "
+        f"{', '.join(parts) or 'no grass'}) · block colour {lod['block_color']:.3f} · "
+        f"LOD {figures['lod_ms']:.0f} ms, all-geometry {figures['geometry_ms']:.0f} ms "
+        f"({figures['speedup']:.1f}x faster)"
+    )

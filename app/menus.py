@@ -27,7 +27,7 @@ def _action(window, text: str, key, slot, checkable: bool = False) -> QAction:
 def build_menus(w) -> None:
     """Menus of the designer window `w`; the actions a test or a shortcut reaches are kept
     on the window (mode_actions, techniques_action, zones_action, timings_action,
-    paint_action, recent_menu, camera_menu)."""
+    quality_action, paint_action, recent_menu, camera_menu)."""
     file_menu = w.menuBar().addMenu("&File")
     file_menu.addAction(
         _action(w, "&Open project…", QKeySequence.StandardKey.Open, lambda: w.projects.open())
@@ -87,6 +87,14 @@ def build_menus(w) -> None:
     view.addAction(w.zones_action)
     w.timings_action = _action(w, "T&imings overlay", "P", w.overlay.setVisible, checkable=True)
     view.addAction(w.timings_action)
+    w.quality_action = _action(
+        w, "&Quality against all-geometry", "Ctrl+6", w.viewport.set_quality, checkable=True
+    )
+    w.quality_action.setToolTip(
+        "when the view rests, an all-geometry frame is drawn in the background and the "
+        "difference shown as a heat map, with its figures in the status line"
+    )
+    view.addAction(w.quality_action)
     view.addSeparator()
     docks = (w.patch_dock, w.paint_dock, w.lod_dock, w.light_dock, w.map_dock, w.history_dock)
     for dock in (*docks, w.profile_dock):

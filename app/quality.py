@@ -18,22 +18,10 @@ import numpy as np
 
 from core.camera import Camera
 from core.document import Document
-from core.quality import Comparison, heat_map, popping, quarter_mask, technique_regions
+from core.quality import Comparison, figures, heat_map, popping
 
 BUDGET_S = 120.0  # longest an all-geometry reference frame may be expected to take
 TRIANGLES_PER_S = 5e6  # llvmpipe's blade throughput (DESIGN.md) when a frame draws no geometry
-
-
-def technique_colors() -> dict[str, list[tuple[float, float, float]]]:
-    from render.geometry import GeometryRenderer
-    from render.grass_type import volume_technique_color
-    from render.image import ImageRenderer
-
-    return {
-        "geometry": [GeometryRenderer.technique_color],
-        "volume": [volume_technique_color(n) for n in (1, 2, 4, 8, 16)],
-        "image": [ImageRenderer.technique_color],
-    }
 
 
 def shifted(camera: Camera, distance: float) -> Camera:
@@ -105,28 +93,22 @@ class QualityRun:
             tech_image, _ = self.lod.render(camera, self.size, measure=False)
         finally:
             self.lod.pipeline.view = "shaded"
-        lod = Comparison.of(reference, lod_image)
+        from render.grass_type import technique_colors
+
+        found, lod, regions = figures(reference, lod_image, tech_image, technique_colors())
         floor = Comparison.of(reference, floor_image)
         row.update(
-            {
-                "geometry_ms": ref_stats.t_a_ms,
-                "speedup": ref_stats.t_a_ms / max(lod_stats.t_a_ms, 1e-3),
-                "lod": lod.to_dict(),
-                "floor": floor.to_dict(),
-                "over_floor": lod.flip_quarter / max(floor.flip_quarter, 1e-9),
-                "techniques": {},
-            }
+            found,
+            geometry_ms=ref_stats.t_a_ms,
+            speedup=ref_stats.t_a_ms / max(lod_stats.t_a_ms, 1e-3),
+            floor=floor.to_dict(),
+            over_floor=lod.flip_quarter / max(floor.flip_quarter, 1e-9),
         )
-        regions = technique_regions(lod_image, tech_image, technique_colors())
-        for technique, mask in regions.items():
-            q = quarter_mask(mask)
-            here, base = lod.region(q), floor.region(q)
-            row["techniques"][technique] = {
-                "pixels": int(mask.sum()),
-                "flip_quarter": here,
-                "floor": base,
-                "over_floor": None if here is None or not base else here / base,
-            }
+        for technique, region in regions.items():
+            here, base = row["techniques"][technique]["flip_quarter"], floor.region(region)
+            row["techniques"][technique].update(
+                floor=base, over_floor=None if here is None or not base else here / base
+            )
         if out is not None:
             from PIL import Image
 

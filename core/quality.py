@@ -103,6 +103,25 @@ def popping(lod_frames: list[np.ndarray], reference_frames: list[np.ndarray]) ->
     return {"lod_max_change": lod, "reference_max_change": ref, "popping": lod / max(ref, 1e-9)}
 
 
+def figures(
+    reference: np.ndarray,
+    lod: np.ndarray,
+    techniques: np.ndarray,
+    colors: dict[str, list[tuple[float, float, float]]],
+) -> tuple[dict, Comparison, dict[str, np.ndarray]]:
+    """The LOD frame against its reference, over the frame and over each technique's region
+    (from `techniques`, the LOD frame in the technique colours); the comparison itself and the
+    regions (quarter resolution)."""
+    lod_vs = Comparison.of(reference, lod)
+    regions = technique_regions(lod, techniques, colors)
+    quarters = {name: quarter_mask(mask) for name, mask in regions.items()}
+    per_technique = {
+        name: {"pixels": int(regions[name].sum()), "flip_quarter": lod_vs.region(q)}
+        for name, q in quarters.items()
+    }
+    return {"lod": lod_vs.to_dict(), "techniques": per_technique}, lod_vs, quarters
+
+
 def heat_map(error: np.ndarray) -> np.ndarray:
     """An error map (0 … 1) as an RGB uint8 image: black through red and yellow to white."""
     e = np.clip(np.asarray(error, np.float32), 0.0, 1.0)

@@ -19,6 +19,16 @@ from render.slices import SliceTextures
 from render.volume import VolumeRenderer
 
 
+def technique_colors() -> dict[str, list[tuple[float, float, float]]]:
+    """The colours the technique view draws each representation's levels in (core/quality.py
+    tells the regions apart by them)."""
+    return {
+        "geometry": [GeometryRenderer.technique_color],
+        "volume": [volume_technique_color(n) for n in (1, 2, 4, 8, 16)],
+        "image": [ImageRenderer.technique_color],
+    }
+
+
 def volume_technique_color(slices: int) -> tuple[float, float, float]:
     """Volume levels are yellow in the technique view (thesis Figs. 7.1-7.6); levels with fewer
     slices in lighter or deeper yellows, so the thesis's three volume levels can be told apart."""

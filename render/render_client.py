@@ -45,9 +45,10 @@ def _new_file(nbytes: int, prefix: str) -> str:
 @dataclass
 class Frame:
     version: int
-    kind: str  # view | image
-    image: np.ndarray  # (h, w, 4) uint8, top row first
+    kind: str  # view | image | quality
+    image: np.ndarray  # (h, w, 4) uint8, top row first (quality: the difference heat map)
     stats: FrameStats
+    figures: dict | None = None  # quality: LOD against all-geometry (core/quality.figures)
 
 
 @dataclass
@@ -171,10 +172,10 @@ class RenderClient:
         if kind == "hello":
             p.pid, p.max_image_size, _gl = args
         elif kind == "frame":
-            version, frame_kind, (w, h), stats = args
+            version, frame_kind, (w, h), stats, figures = args
             image = p.out.array[: w * h * 4].reshape(h, w, 4).copy()
             p.conn.send(("ack",))
-            self.on_frame(Frame(version, frame_kind, image, stats))
+            self.on_frame(Frame(version, frame_kind, image, stats, figures))
         elif kind == "mapped":
             p.forget_name(args[0])
         elif kind == "status":
@@ -271,7 +272,8 @@ class RenderClient:
 
     def request(self, version: int, camera, size: tuple[int, int], kind: str = "view") -> None:
         """Ask for a frame of the current state: a draft and a full frame (`view`), or only a
-        full one (`image`: a screenshot of any size)."""
+        full one (`image`: a screenshot of any size; `quality`: the LOD frame against an
+        all-geometry reference, a heat map and figures)."""
         if self._closed:
             return
         self._flush_maps()

@@ -7,7 +7,9 @@ The designer runs two of these (DESIGN.md: the window's thread never draws GL):
   slices made after the first draft that needs them (the draft after a blade edit shows the new
   blades at once and the new slices one draft later);
 - `full`: full-quality frames at a lower scheduling priority (nice 10), so drafts win the CPU;
-  a full frame that newer input has made stale is abandoned between its passes.
+  a full frame that newer input has made stale is abandoned between its passes. It also draws
+  the Quality view's frames: the LOD frame against an all-geometry reference of the same
+  camera (core/quality.py), the difference as a heat map, given up like a stale frame.
 
 Every message a process has not yet handled is applied before it draws, so requests coalesce:
 only the newest camera is drawn, never the positions in between.
@@ -163,7 +165,43 @@ class RenderServer:
             self._targets[size] = self.ctx.framebuffer(self.ctx.renderbuffer(size, 4))
         return self._targets[size]
 
+    def _quality(self, camera, fbo, size: tuple[int, int], abort):
+        """The LOD frame, its technique colours and an all-geometry reference: the heat map of
+        their difference (RGBA) and the figures."""
+        from core.quality import figures, heat_map
+        from render.grass_type import technique_colors
+
+        p = self.pipeline
+        stats = p.render(camera, fbo, size, True, False, abort)
+        lod = context.read_rgb(fbo, size, 3)
+        view, mode = p.view, p.mode
+        try:
+            p.view = "techniques"
+            p.render(camera, fbo, size, False, False, abort)
+            techniques = context.read_rgb(fbo, size, 3)
+            p.view = "shaded"
+            p.set_mode(ViewMode.GEOMETRY)
+            reference_stats = p.render(camera, fbo, size, True, False, abort)
+            reference = context.read_rgb(fbo, size, 3)
+        finally:
+            p.view = view
+            p.set_mode(mode)
+        found, lod_vs, _ = figures(reference, lod, techniques, technique_colors())
+        found.update(
+            lod_ms=stats.t_a_ms,
+            geometry_ms=reference_stats.t_a_ms,
+            speedup=reference_stats.t_a_ms / max(stats.t_a_ms, 1e-3),
+        )
+        heat = heat_map(lod_vs.quarter_map).repeat(4, axis=0).repeat(4, axis=1)
+        image = np.zeros((size[1], size[0], 4), np.uint8)
+        image[: heat.shape[0], : heat.shape[1], :3] = heat
+        image[..., 3] = 255
+        return image, stats, found
+
     def draw(self, request: dict) -> None:
+        if request["kind"] == "quality":
+            self._draw_quality(request)
+            return
         w, h = request["size"]
         draft = self.role == DRAFT and request["kind"] == "view"
         if draft:
@@ -177,17 +215,30 @@ class RenderServer:
             return
         stats.preview = draft
         stats.state_time = request["state_time"]
+        self._send_frame(request, context.read_rgb(fbo, (w, h), 4), stats)
+        if draft and self.pipeline.missing():
+            self.refine = True
+
+    def _draw_quality(self, request: dict) -> None:
+        size = tuple(request["size"])
+        fbo = self._target(size)
+        try:
+            image, stats, found = self._quality(request["camera"], fbo, size, self.conn.poll)
+        except FrameAborted:
+            return
+        stats.state_time = request["state_time"]
+        self._send_frame(request, image, stats, found)
+
+    def _send_frame(self, request: dict, image: np.ndarray, stats, extra=None) -> None:
+        h, w = image.shape[:2]
         if self.out is None or self.out.path != request["out_path"]:
             if self.out is not None:
                 self.out.close()
             self.out = MappedArray(request["out_path"], (request["out_bytes"],), np.uint8)
             self.conn.send(("mapped", self.out.path))
-        image = context.read_rgb(fbo, (w, h), 4)
         self.out.array[: image.size] = image.reshape(-1)
         self.waiting_ack = True
-        self.conn.send(("frame", request["version"], request["kind"], (w, h), stats))
-        if draft and self.pipeline.missing():
-            self.refine = True
+        self.conn.send(("frame", request["version"], request["kind"], (w, h), stats, extra))
 
     def convert_one(self) -> None:
         """The draft process makes the slices a draft lacked one set at a time."""

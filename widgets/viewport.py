@@ -5,6 +5,11 @@ process follows, and the newest frame is painted.
 
 Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
 W A S D move and Q E sink and rise.
+
+The Quality view: once a full-quality frame of the newest state is on screen, the full-quality
+process draws an all-geometry reference of the same camera in the background and answers with
+the difference as a heat map (shown over the frame) and its figures (`quality_ready`); any
+change gives it up, and it is asked for again when the view rests.
 """
 
 from __future__ import annotations
@@ -38,6 +43,7 @@ class GrassViewport(QWidget):
     camera_changed = Signal()
     status_changed = Signal(str)  # what the renderer is doing ("" when it is done)
     renderer_restarted = Signal(str)  # what happened to a render process that died
+    quality_ready = Signal(object)  # the Quality view's figures for the state on screen
     # painting (tool "paint"): map texel (column, row) under the cursor, keyboard modifiers
     paint_pressed = Signal(float, float, object)
     paint_moved = Signal(float, float)
@@ -75,6 +81,9 @@ class GrassViewport(QWidget):
         self._images: dict[int, Frame] = {}  # screenshots waited for, by token
         self._token = 0  # screenshots and questions to the renderer
         self._pending = False
+        self.quality = False  # the Quality view (set_quality)
+        self._quality: tuple[int, QImage, dict] | None = None  # version, heat map, figures
+        self._quality_asked = 0  # the version a quality frame was last asked for
         self.renderer = RenderClient(self._on_frame, self.status_changed.emit, self._on_restart)
         self._notifiers: list[QSocketNotifier] = []
         self._watch()
@@ -126,6 +135,26 @@ class GrassViewport(QWidget):
         self.renderer.set_view_state("continuous", on)
         self.request_frame()
 
+    def set_quality(self, on: bool) -> None:
+        """The Quality view: the difference against all-geometry over the frame, when at rest."""
+        self.quality = on
+        self._quality, self._quality_asked = None, 0
+        self._ask_quality()
+        self.update()
+
+    @property
+    def quality_figures(self) -> dict | None:
+        """The Quality view's figures for the frame on screen (None until they are drawn)."""
+        if self._quality is None or self._quality[0] != self.shown[0]:
+            return None
+        return self._quality[2]
+
+    def _ask_quality(self) -> None:
+        if self.quality and not self.settling and self._quality_asked != self.version:
+            self._quality_asked = self.version
+            self.status_changed.emit("quality: drawing the all-geometry reference")
+            self.renderer.request(self.version, self.camera, self._size(), kind="quality")
+
     @property
     def max_image_size(self) -> int:
         return self.renderer.max_image_size
@@ -154,6 +183,15 @@ class GrassViewport(QWidget):
         if frame.kind == "image":
             self._images[frame.version] = frame
             return
+        if frame.kind == "quality":
+            if self.quality and frame.version == self.version:
+                h, w = frame.image.shape[:2]
+                heat = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888)
+                self._quality = (frame.version, heat.copy(), frame.figures)
+                self.status_changed.emit("")
+                self.update()
+                self.quality_ready.emit(frame.figures)
+            return
         key = (frame.version, frame.stats.preview)
         if frame.version < self.shown[0] or (key[0] == self.shown[0] and key[1] > self.shown[1]):
             return  # older than what is on screen, or a draft of a state shown in full
@@ -163,6 +201,7 @@ class GrassViewport(QWidget):
         self.last_stats = frame.stats
         self.update()
         self.frame_rendered.emit(frame.stats)
+        self._ask_quality()
 
     def _on_restart(self, role: str, why: str) -> None:
         self._watch()
@@ -233,6 +272,10 @@ class GrassViewport(QWidget):
         else:
             painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform)
             painter.drawImage(self.rect(), self._image)
+            if self.quality and self.quality_figures is not None:
+                painter.setOpacity(0.7)
+                painter.drawImage(self.rect(), self._quality[1])
+                painter.setOpacity(1.0)
         painter.end()
 
     def resizeEvent(self, event) -> None:

@@ -352,3 +352,39 @@ def test_the_readme_names_the_menus_as_they_are(window):
     assert ("File", "New from built-in scene") in mentioned
     for menu, item in mentioned:
         assert item in menus[menu], (menu, item, menus[menu])
+
+
+def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbot):
+    """Ctrl+6: at rest, an all-geometry frame is drawn in the background; the difference lies
+    over the frame as a heat map and its figures are in the status line; a camera move gives
+    them up until the view rests again."""
+    vp = window.viewport
+    wait_for_slices(window, qtbot)
+    plain = vp.grab().toImage()
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    vp.setFocus()
+    qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)
+    assert window.quality_action.isChecked() and vp.quality
+    qtbot.waitUntil(lambda: vp.quality_figures is not None, timeout=120000)
+    figures = vp.quality_figures
+    assert 0 < figures["lod"]["flip_quarter"] < 1
+    assert figures["geometry_ms"] > 0 and figures["speedup"] > 0
+    assert "quality against all-geometry" in window.status.text()
+    assert f"{figures['lod']['flip_quarter']:.3f}" in window.status.text()
+
+    def image(qimage):
+        qimage = qimage.convertToFormat(qimage.Format.Format_RGB888)
+        w, h = qimage.width(), qimage.height()
+        data = np.frombuffer(qimage.constBits(), np.uint8, count=qimage.sizeInBytes())
+        return data.reshape(h, qimage.bytesPerLine())[:, : w * 3].reshape(h, w, 3).astype(int)
+
+    shown, before = image(vp.grab().toImage()), image(plain)
+    assert np.abs(shown - before).mean() > 10  # the heat map lies over the frame
+    with qtbot.waitSignal(vp.frame_rendered, timeout=20000):
+        vp.camera.orbit(15.0, 0.0)
+        vp.request_frame()
+    assert vp.quality_figures is None  # the new view's difference is not drawn yet
+    qtbot.waitUntil(lambda: vp.quality_figures is not None, timeout=120000)
+    qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)  # off again
+    assert not vp.quality and not window.quality_action.isChecked()
