@@ -108,6 +108,17 @@ def parser() -> argparse.ArgumentParser:
         type=_cells,
         help="terrain size WxH in cells (default: the scene's); the maps are resampled",
     )
+    n.add_argument(
+        "--height-map",
+        type=Path,
+        help="a height map to import (8- or 16-bit greyscale PNG, e.g. a DEM), resampled to "
+        "the project's maps",
+    )
+    n.add_argument(
+        "--height-scale",
+        type=float,
+        help="world units of the height map's white (default: the scene's, or 10)",
+    )
 
     q = sub.add_parser("quality", help="LOD frame against all-geometry: FLIP, floor, popping")
     q.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
@@ -165,6 +176,8 @@ def cmd_new(args: argparse.Namespace) -> int:
             raise CliError(exc.args[0]) from None
         except ValueError as exc:
             raise CliError(f"--cells: {exc}") from None
+    if args.height_map is not None or args.height_scale is not None:
+        _import_heights(document, args.height_map, args.height_scale)
     _writable(args.file)
     try:
         save_project(args.file, document)
@@ -173,6 +186,23 @@ def cmd_new(args: argparse.Namespace) -> int:
     t = document.terrain_spec
     print(f"wrote {args.file} (scene {document.name}, {t.columns} × {t.rows} cells)")
     return 0
+
+
+def _import_heights(document, path: Path | None, scale: float | None) -> None:
+    """The height map of `path` into the document's maps, and its height scale."""
+    from core.map_io import MapFileError, fit_channels, read_image, resample
+
+    t = document.terrain_spec
+    scale = scale if scale is not None else (t.height_scale if t.height_scale > 0 else 10.0)
+    if not 0.0 < scale <= 10_000.0:
+        raise CliError(f"--height-scale {scale:g} out of range; above 0, at most 10000")
+    values = None
+    if path is not None:
+        try:
+            values = resample(fit_channels(read_image(path), "height", True), document.maps.size)
+        except MapFileError as exc:
+            raise CliError(f"--height-map: {exc}") from None
+    document.set_heights(values, scale)
 
 
 def cmd_render(args: argparse.Namespace) -> int:

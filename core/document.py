@@ -10,7 +10,7 @@ view connects `document.events.<name>` without Qt.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from psygnal import Signal, SignalGroup
@@ -261,6 +261,35 @@ class Document:
                 grass_height=self._grass[0].params.patch_height,
             )
         return self._terrain
+
+    def set_heights(self, values: np.ndarray | None, height_scale: float) -> None:
+        """A new height map ((rows, columns, 1) at the maps' size; None keeps the map) and
+        height scale. Named cameras and the keys of camera paths keep the height above the
+        ground under their eye (eye and target move up or down together), so a view made for
+        the old ground does not end up inside a new hill."""
+
+        def ground(spec: CameraSpec) -> float:
+            return self.ground_at(spec.eye[0], spec.eye[2])
+
+        specs = [*self._cameras.values(), *(k for keys in self.paths.values() for k in keys)]
+        before = [ground(s) for s in specs]
+        if values is not None:
+            self.maps.write("height", 0, 0, values)
+        self.terrain_spec = replace(self.terrain_spec, height_scale=height_scale)
+        self.rebuild_terrain()
+
+        def moved(spec: CameraSpec, old: float) -> CameraSpec:
+            dy = ground(spec) - old
+            eye, target = spec.eye, spec.target
+            return replace(
+                spec,
+                eye=(eye[0], eye[1] + dy, eye[2]),
+                target=(target[0], target[1] + dy, target[2]),
+            )
+
+        shifted = iter([moved(s, old) for s, old in zip(specs, before, strict=True)])
+        self.cameras = {name: next(shifted) for name in self._cameras}
+        self.paths = {name: tuple(next(shifted) for _ in keys) for name, keys in self.paths.items()}
 
     def rebuild_terrain(self) -> Terrain:
         """Bounding volumes and ground ranges follow a changed height map."""

@@ -255,3 +255,28 @@ def test_quality_refuses_bad_input_in_one_line(args, words):
     assert r.returncode == 2
     assert words in r.stderr and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_new_imports_a_16_bit_height_map(tmp_path):
+    dem = tmp_path / "dem.png"
+    heights = np.tile(np.linspace(0, 65535, 300).astype(np.uint16), (200, 1))  # a ramp along x
+    Image.fromarray(heights).save(dem)
+    out = tmp_path / "dem.sward"
+    r = sward("new", str(out), "--scene", "meadow", "--height-map", str(dem), "--height-scale", "7")
+    assert r.returncode == 0, r.stderr
+    from core.project_file import load_project
+
+    doc = load_project(out)
+    assert doc.terrain_spec.height_scale == 7.0
+    h = doc.maps.layer("height")[..., 0]
+    assert h[:, 0].max() < 0.01 and h[:, -1].min() > 0.99  # resampled to the project's maps
+    assert np.all(np.diff(h[h.shape[0] // 2]) >= -1e-6)
+    for c in doc.cameras.values():  # the views were lifted with the ground under them
+        assert c.eye[1] > doc.ground_at(c.eye[0], c.eye[2]) + 1.0
+    bad = tmp_path / "bad.png"
+    bad.write_bytes(b"not an image")
+    r = sward("new", str(tmp_path / "x.sward"), "--height-map", str(bad))
+    assert r.returncode == 2 and "--height-map: bad.png" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    r = sward("new", str(tmp_path / "x.sward"), "--height-scale", "-1")
+    assert r.returncode == 2 and "--height-scale -1 out of range" in r.stderr

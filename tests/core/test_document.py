@@ -208,3 +208,24 @@ def test_the_terrain_follows_the_height_map_only_when_rebuilt():
     new = doc.rebuild_terrain()
     assert rebuilt == [new] and new is not terrain
     assert new.cell_max.min() > terrain.cell_max.min()
+
+
+def test_new_heights_keep_the_cameras_above_the_ground():
+    from app.scenes import get_scene
+
+    doc = get_scene("meadow").document()
+    w, h = doc.maps.size
+    cameras = doc.cameras
+    above = {n: c.eye[1] - doc.ground_at(c.eye[0], c.eye[2]) for n, c in cameras.items()}
+    ramp = np.tile(np.linspace(0.0, 1.0, w, dtype=np.float32), (h, 1))[..., None]
+    doc.set_heights(ramp, 20.0)
+    assert doc.terrain_spec.height_scale == 20.0
+    assert np.allclose(doc.maps.layer("height")[..., 0], ramp[..., 0])
+    for name, c in doc.cameras.items():
+        old = cameras[name]
+        assert c.eye[1] - doc.ground_at(c.eye[0], c.eye[2]) == pytest.approx(above[name], abs=1e-4)
+        # eye and target moved together: the view's direction is the same
+        assert np.allclose(np.subtract(c.target, c.eye), np.subtract(old.target, old.eye))
+    key = doc.paths["walk"][0]
+    assert key.eye[1] - doc.ground_at(key.eye[0], key.eye[2]) > 1.0
+    assert doc.terrain.cell_max.max() > 15.0  # the quadtree follows the new ground
