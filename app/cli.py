@@ -164,6 +164,20 @@ def _document(args: argparse.Namespace):
         raise CliError(exc.args[0]) from None
 
 
+def _known_camera(document, name: str) -> None:
+    if name not in document.cameras:
+        raise CliError(
+            f"unknown camera {name!r} for scene {document.name}; "
+            f"cameras: {', '.join(document.cameras)}"
+        )
+
+
+def _known_path(document, name: str | None) -> None:
+    if name is not None and name not in document.paths:
+        known = ", ".join(document.paths) or "none"
+        raise CliError(f"unknown camera path {name!r} for scene {document.name}; paths: {known}")
+
+
 def cmd_new(args: argparse.Namespace) -> int:
     from core.project_file import ProjectError, save_project
 
@@ -241,11 +255,7 @@ def cmd_render(args: argparse.Namespace) -> int:
         camera_name = "custom"
     else:
         camera_name = args.camera or document.default_camera
-        if camera_name not in document.cameras:
-            raise CliError(
-                f"unknown camera {camera_name!r} for scene {document.name}; "
-                f"cameras: {', '.join(document.cameras)}"
-            )
+        _known_camera(document, camera_name)
         camera = document.camera(camera_name)
 
     document.set_params(0, params)
@@ -275,11 +285,7 @@ def cmd_profile(args: argparse.Namespace) -> int:
     from app.profile import profile
 
     document = _document(args)
-    if args.path is not None and args.path not in document.paths:
-        known = ", ".join(document.paths) or "none"
-        raise CliError(
-            f"unknown camera path {args.path!r} for scene {document.name}; paths: {known}"
-        )
+    _known_path(document, args.path)
     frames = args.frames if args.frames is not None else (30 if args.path else 5)
     if not 1 <= frames <= 10_000:
         raise CliError(f"--frames {frames} out of range; allowed 1 … 10000")
@@ -295,16 +301,8 @@ def cmd_quality(args: argparse.Namespace) -> int:
 
     document = _document(args)
     for name in args.camera or []:
-        if name not in document.cameras:
-            raise CliError(
-                f"unknown camera {name!r} for scene {document.name}; "
-                f"cameras: {', '.join(document.cameras)}"
-            )
-    if args.path is not None and args.path not in document.paths:
-        known = ", ".join(document.paths) or "none"
-        raise CliError(
-            f"unknown camera path {args.path!r} for scene {document.name}; paths: {known}"
-        )
+        _known_camera(document, name)
+    _known_path(document, args.path)
     if not 2 <= args.frames <= 1000:
         raise CliError(f"--frames {args.frames} out of range; allowed 2 … 1000")
     if not args.budget > 0:
