@@ -225,6 +225,10 @@ class RenderServer:
         try:
             image, stats, found = self._quality(request["camera"], fbo, size, self.conn.poll)
         except FrameAborted:
+            # drawn again once the message that stopped it is handled, unless that message
+            # asks for a newer frame (which then takes its place)
+            if self.request is None:
+                self.request = request
             return
         stats.state_time = request["state_time"]
         self._send_frame(request, image, stats, found)

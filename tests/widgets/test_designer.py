@@ -366,6 +366,8 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
     vp.setFocus()
     qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)
     assert window.quality_action.isChecked() and vp.quality
+    qtbot.wait(100)
+    vp.renderer.set_view_state("overlay", "brush", [])  # interrupts it: drawn again after
     qtbot.waitUntil(lambda: vp.quality_figures is not None, timeout=120000)
     figures = vp.quality_figures
     assert 0 < figures["lod"]["flip_quarter"] < 1
