@@ -4,10 +4,12 @@ the 8 × 8 block colour difference, the floor (two reference frames a blade's wi
 figure over each technique's screen region and its ratio to the floor there, and the speed-up of
 LOD over all-geometry; along a path, popping. Writes JSON and heat maps (--out DIR).
 
-An all-geometry reference can take far longer than the LOD frame (the football's 134,000 visible
-cells of 5000 blades on llvmpipe: the better part of an hour). Its triangles are counted from
-the query first; when drawing them would take longer than the budget at the geometry speed the
-LOD frame showed, the reference is not drawn and the speed-up is estimated."""
+An all-geometry reference can take far longer than the LOD frame (the football player camera's
+2.9 G blade triangles did not finish in 25 minutes on llvmpipe: benchmarks/lod_speedup.py). Its
+triangles are counted from the query first; when drawing them would take longer than the budget
+at the geometry speed the LOD frame showed, the reference is not drawn and the speed-up is
+estimated. The estimate is a lower bound: a few thousand instances draw faster per triangle than
+billions do."""
 
 from __future__ import annotations
 
