@@ -13,6 +13,7 @@ from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
 from render.conversion import PatchConverter
+from render.facing import FacingTable
 from render.geometry import GeometryRenderer
 from render.image import ImageRenderer
 from render.slices import SliceTextures
@@ -46,6 +47,8 @@ class GrassTypeRenderer:
         self.geometry = GeometryRenderer(ctx)
         self.volumes: dict[int, VolumeRenderer] = {}  # one per slice count (thesis ch. 7)
         self.image = ImageRenderer(ctx)
+        # the blades' mean diffuse factor by view direction, which the volume lights with
+        self.facing = FacingTable(ctx, lambda: self.patch)
         self.lod = LodConfig()
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
@@ -68,6 +71,7 @@ class GrassTypeRenderer:
         if slices not in self.volumes:
             renderer = VolumeRenderer(self.ctx)
             renderer.technique_color = volume_technique_color(slices)
+            renderer.facing = self.facing
             renderer.density = self.geometry.density
             self._set_channel(renderer)
             renderer.set_instances(self._instances)
@@ -150,3 +154,4 @@ class GrassTypeRenderer:
         for textures in self._slices.values():
             textures.release()
         self._slices = {}
+        self.facing.release()

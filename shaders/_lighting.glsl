@@ -22,8 +22,23 @@ float lambert_through(vec3 n) {
     return lambert + u_translucency * max(dot(-n, u_light_dir), 0.0);
 }
 
+// The mean diffuse factor of the grass type's blades seen from the direction to_eye (render/
+// facing.py, core/facing.py): what a slice far away must show to light like its blades.
+uniform sampler2D u_facing;
+
+float facing_lambert(vec3 to_eye) {
+    vec3 e = normalize(to_eye);
+    float azimuth = atan(e.x, e.z) * 0.15915494;  // 0 = +z, turning towards +x, in turns
+    float elevation = asin(clamp(e.y, 0.0, 1.0)) * 0.63661977;  // 0 … 1 over 0 … 90 degrees
+    return textureLod(u_facing, vec2(azimuth, elevation), 0.0).r;
+}
+
 vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
     return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * lambert_through(n));
+}
+
+vec3 shade_l(vec3 albedo, float lambert, float ao, vec3 ambient_map, vec3 diffuse_map) {
+    return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * lambert);
 }
 
 // Σ w_i · shade(modulate(c_i, map), n_i, ao_i, ambient_map, diffuse_map) for samples that share

@@ -1,0 +1,66 @@
+"""How bright grass blades are on average, seen from a direction: the diffuse factor a far
+representation must show to light like the blades it stands for (issue: the LOD image matches
+all-geometry).
+
+A blade is two-sided: seen from `e`, each of its fragments shows the face whose normal turns to
+the viewer, n_f = n · sign(n · e), and covers the screen in proportion to |n · e|. The mean
+diffuse factor of the blades seen from `e` is then
+
+    L(e) = Σ_k |n_k · e| · l(n_k · sign(n_k · e)) / Σ_k |n_k · e|,
+    l(n) = max(n · L, 0) + translucency · max(−n · L, 0)       (shaders/_lighting.glsl)
+
+over the patch's vertex normals n_k. A slice's averaged normal cannot give this: averaging
+turns the facing normals of many blades, which point to the viewer, into one short vector that
+points wherever the capture put it, and max(·, 0) of an average is not the average of max(·, 0).
+The volume's vertical slices light with this table (meadow default, quarter-resolution FLIP
+against all-geometry: 3.36 → 3.10 × the floor). The table is small (azimuth × elevation of e
+over the upper hemisphere), depends on the light and the patch, and is cheap to rebuild when
+either changes."""
+
+from __future__ import annotations
+
+import numpy as np
+
+AZIMUTHS = 32  # table columns: azimuth of e, 0 = +z turning towards +x (as the sun's)
+ELEVATIONS = 8  # table rows: elevation of e, 0 … 90 degrees, texel centres
+SAMPLE = 20000  # at most this many normals are used (a patch has tens of thousands)
+
+
+def directions(azimuths: int = AZIMUTHS, elevations: int = ELEVATIONS) -> np.ndarray:
+    """(elevations, azimuths, 3) unit vectors at the table's texel centres."""
+    az = 2.0 * np.pi * (np.arange(azimuths) + 0.5) / azimuths
+    el = 0.5 * np.pi * (np.arange(elevations) + 0.5) / elevations
+    ce = np.cos(el)[:, None]
+    return np.stack(
+        [
+            ce * np.sin(az)[None, :],
+            np.sin(el)[:, None].repeat(azimuths, 1),
+            ce * np.cos(az)[None, :],
+        ],
+        axis=-1,
+    )
+
+
+def facing_lambert(
+    normals: np.ndarray,
+    light_dir: np.ndarray,
+    translucency: float,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+) -> np.ndarray:
+    """(elevations, azimuths) float32: L(e) at each table direction (see the module)."""
+    n = np.asarray(normals, np.float64).reshape(-1, 3)
+    length = np.linalg.norm(n, axis=1)
+    n = n[length > 1e-6] / length[length > 1e-6, None]
+    if len(n) == 0:
+        return np.zeros((elevations, azimuths), np.float32)
+    if len(n) > SAMPLE:
+        n = n[np.linspace(0, len(n) - 1, SAMPLE).astype(np.int64)]
+    e = directions(azimuths, elevations).reshape(-1, 3)
+    ne = n @ e.T  # (normals, directions)
+    nl = n @ np.asarray(light_dir, np.float64)  # (normals,)
+    facing_l = np.sign(ne) * nl[:, None]  # n_f · L
+    lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
+    w = np.abs(ne)
+    table = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
+    return table.reshape(elevations, azimuths).astype(np.float32)

@@ -1,0 +1,64 @@
+"""How far each representation's colour is from the blades', by distance: every cell of a
+scene's camera drawn as geometry, as volume and as image-based (`--only`), and the mean colour
+of the grass in bands of screen rows (on flat ground a row is a distance) minus that of the
+geometry frame. A representation that lights or colours its grass differently from the blades
+shows as a trend down the rows; FLIP against all-geometry (`sward quality`) counts it over the
+whole region.
+
+    .venv/bin/python scripts/representation_bands.py [--scene bench] [--camera zones]
+        [--size 480x270] [--band 15] [--only volume,image]
+
+Prints JSON: per band its first row, the geometry's mean RGB (0 … 255) and each
+representation's difference from it."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+
+def main() -> None:
+    from app.scenes import get_scene
+    from render.context import standalone
+    from render.headless import HeadlessRenderer
+
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scene", default="bench")
+    ap.add_argument("--camera", default="zones")
+    ap.add_argument("--size", default="480x270")
+    ap.add_argument("--band", type=int, default=15)
+    ap.add_argument("--only", default="volume,image")
+    args = ap.parse_args()
+    size = tuple(int(v) for v in args.size.split("x"))
+    document = get_scene(args.scene).document()
+    camera = document.camera(args.camera)
+    ctx = standalone()
+    images = {}
+    for mode in ["geometry", *args.only.split(",")]:
+        with HeadlessRenderer(document, ctx, mode=mode) as renderer:
+            renderer.render(camera, size, measure=False)  # slices convert, shaders compile
+            images[mode] = renderer.render(camera, size, measure=False)[0].astype(np.float64)
+    reference = images.pop("geometry")
+    sky = np.abs(reference - reference[0, 0]).sum(axis=-1) < 4  # the sky's colour
+    bands = []
+    for y0 in range(0, size[1], args.band):
+        rows = slice(y0, y0 + args.band)
+        grass = ~sky[rows]
+        if grass.sum() < 100:
+            continue
+        geometry = reference[rows][grass].mean(axis=0)
+        row = {"row": y0, "geometry": np.round(geometry, 1).tolist()}
+        for mode, image in images.items():
+            row[mode] = np.round(image[rows][grass].mean(axis=0) - geometry, 1).tolist()
+        bands.append(row)
+    print(json.dumps({"scene": args.scene, "camera": args.camera, "size": size, "bands": bands}))
+
+
+if __name__ == "__main__":
+    main()
