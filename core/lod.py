@@ -41,6 +41,31 @@ def opacity(threshold, w, local_density: float, epsilon: float, far: bool):
     return np.where(x <= 1.0, 1.0 - near, 0.0) if far else near
 
 
+SPREAD_WIDTH = 12.0**0.5  # a uniform distribution's width over its standard deviation
+
+
+def share(threshold, spread, w, local_density: float, epsilon: float, far: bool):
+    """The share of a slice texel's blades that a representation keeps (eq. 5.26 over many
+    blades): a texel of a reduced mip level stands for blades whose thresholds have the mean
+    `threshold` and the standard deviation `spread` (render/slices.py), taken as uniform over
+    an interval of width √12 · spread, clipped to the thresholds' range 0 … 1 (so a bare cell
+    keeps none). Of them the texel keeps those below the local density, the near
+    representation those below w · density as well (the window ε widening the crossover), the
+    far one the rest; near + far = kept. A spread of 0 is `opacity`: one blade."""
+    d = max(local_density, 1e-6)
+    t = np.asarray(threshold, dtype=np.float64)
+    half = 0.5 * SPREAD_WIDTH * np.asarray(spread, dtype=np.float64)
+    lo, hi = np.maximum(t - half, 0.0), np.minimum(t + half, 1.0)
+    width = np.maximum(hi - lo, 1e-4)
+    kept = np.clip((d - lo) / width, 0.0, 1.0)
+    window = max(epsilon, 1e-4) * d  # eq. 5.26's ε, in thresholds
+    reach = np.sqrt((0.5 * width) ** 2 + window**2)
+    r = np.clip((0.5 * (lo + hi) - (w * d - reach)) / (2.0 * reach), 0.0, 1.0)
+    linear = width / (width + 2.0 * window)  # uniform thresholds: a ramp; one blade: the window
+    near = np.minimum(1.0 - (linear * r + (1.0 - linear) * r * r * (3.0 - 2.0 * r)), kept)
+    return kept - near if far else near
+
+
 @dataclass(frozen=True)
 class LodLevel:
     """One level of detail: a representation drawn from `begin` to `end` (world units from the

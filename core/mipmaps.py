@@ -71,7 +71,9 @@ def build_mips(base: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarray]:
     return [level[0] for level in build_mips_stack(np.asarray(base)[None], alpha_ref)]
 
 
-def build_mips_stack(stack: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarray]:
+def build_mips_stack(
+    stack: np.ndarray, alpha_ref: float = 0.5, upper_first: bool = False
+) -> list[np.ndarray]:
     """build_mips of every image of an (n, h, w, 4) stack: levels of shape (n, h_k, w_k, 4).
     Each step is one compiled pass over the stack (numba; the numpy version, a dozen array
     passes per level, took 65-85 ms of a 2 × 8 conversion)."""
@@ -82,7 +84,10 @@ def build_mips_stack(stack: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarr
         nxt = np.empty((*_next_size(levels[-1]), 4), np.float32)
         # alpha_weighted_reduce (alpha: mean): colour weighted by alpha, alpha averaged
         src = levels[-1]
-        _weighted_into(src[..., :3], src[..., 3], nxt[..., :3], nxt[..., 3])
+        if upper_first:
+            _upper_first_into(src, nxt)
+        else:
+            _weighted_into(src[..., :3], src[..., 3], nxt[..., :3], nxt[..., 3])
         levels.append(nxt)
     # the reductions ran on the unscaled alpha (the true covered share); now rescale each level
     for level in levels[1:]:
@@ -206,9 +211,69 @@ def _weighted_into(src, weight, dst, dst_weight):
                 dst_weight[k, y, x] = s * quarter
 
 
-def stacked_slice_mips(slices: np.ndarray, levels: int, alpha_ref: float = 0.5) -> list[np.ndarray]:
+@numba.njit(cache=True)
+def _upper_first_into(src, dst):
+    """One level of a vertical slice's colour chain, seen from above: of the two rows under a
+    texel the upper one hides the lower by its alpha (C = a_u C_u + (1 − a_u) a_l C_l over the
+    weights a_u + (1 − a_u) a_l), as the blades' upper parts hide their lower ones from any eye
+    above the grass; alpha stays the plain mean, the true covered share. Rows run upward."""
+    quarter = np.float32(0.25)
+    one = np.float32(1.0)
+    for k in range(src.shape[0]):
+        for y in range(dst.shape[1]):
+            lo, up = _pairs(src.shape[1], y)
+            for x in range(dst.shape[2]):
+                x0, x1 = _pairs(src.shape[2], x)
+                total = np.float32(0.0)
+                acc0 = np.float32(0.0)
+                acc1 = np.float32(0.0)
+                acc2 = np.float32(0.0)
+                plain = np.float32(0.0)
+                for xx in (x0, x1):
+                    a_u, a_l = src[k, up, xx, 3], src[k, lo, xx, 3]
+                    w_u, w_l = a_u, (one - a_u) * a_l
+                    total += w_u + w_l
+                    acc0 += w_u * src[k, up, xx, 0] + w_l * src[k, lo, xx, 0]
+                    acc1 += w_u * src[k, up, xx, 1] + w_l * src[k, lo, xx, 1]
+                    acc2 += w_u * src[k, up, xx, 2] + w_l * src[k, lo, xx, 2]
+                    plain += a_u + a_l
+                if total > 0.0:
+                    dst[k, y, x, 0] = acc0 / total
+                    dst[k, y, x, 1] = acc1 / total
+                    dst[k, y, x, 2] = acc2 / total
+                else:
+                    for c in range(3):
+                        dst[k, y, x, c] = (
+                            (src[k, lo, x0, c] + src[k, lo, x1, c]) + src[k, up, x0, c]
+                        ) + src[k, up, x1, c]
+                        dst[k, y, x, c] *= quarter
+                dst[k, y, x, 3] = plain * quarter
+
+
+def stacked_slice_mips(
+    slices: np.ndarray, levels: int, alpha_ref: float = 0.5, upper_first: bool = False
+) -> list[np.ndarray]:
     """Per-slice mip chains of (n, h, w, 4) colour slices, each level stacked along rows into one
     (n·h_k, w_k, 4) image, for `levels` levels (at most log2(h) + 1 so no slice shrinks below a
     row)."""
-    stacked = build_mips_stack(slices, alpha_ref)[:levels]
+    stacked = build_mips_stack(slices, alpha_ref, upper_first)[:levels]
     return [level.reshape(-1, *level.shape[2:]) for level in stacked]
+
+
+def threshold_spread(threshold: np.ndarray, alpha: np.ndarray, count: int) -> np.ndarray:
+    """(count,) float32: per mip level, how far the density thresholds of the blades under one
+    texel spread — the standard deviation of the threshold over a texel's footprint, weighted by
+    alpha like the threshold's own chain, averaged over the level's texels (weighted by their
+    mean alpha). 0 at the base level (one blade a texel); a reduced texel keeps a share of its
+    blades by it instead of all or none (core/lod.py: share)."""
+    t = np.ascontiguousarray(threshold, dtype=np.float32)[..., None]
+    a = np.ascontiguousarray(alpha, dtype=np.float32)
+    means = weighted_chain(t, a, count)
+    squares = weighted_chain(t * t, a, count)
+    cover = weighted_chain(a[..., None], np.ones_like(a), count)
+    out = np.zeros(count, np.float32)
+    for k in range(1, count):
+        sd = np.sqrt(np.maximum(squares[k] - means[k] ** 2, 0.0))[..., 0]
+        w = cover[k][..., 0]
+        out[k] = float((sd * w).sum() / max(w.sum(), 1e-12))
+    return out

@@ -49,6 +49,7 @@ class GrassTypeRenderer:
         self.image = ImageRenderer(ctx)
         # the blades' mean diffuse factor by view direction, which the volume lights with
         self.facing = FacingTable(ctx, lambda: self.patch)
+        self.image.facing = self.facing
         self.lod = LodConfig()
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None

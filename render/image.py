@@ -9,9 +9,10 @@ import moderngl
 import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
+from render.facing import FACING_UNIT, FacingTable
 from render.ground import grid_mesh
 from render.shaders import load_program
-from render.slices import SliceTextures
+from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 from render.volume import TOP_HEIGHT
 
@@ -61,7 +62,6 @@ class ImageRenderer:
     # which at one height would hide it wherever both grow (thesis 6.4.5).
     canopy = 0.7
     alpha_ref = 0.2
-    grazing_lean = 0.4  # see shaders/image.glsl: matches the volume zone's brightness
     flat_ground = 0.5 * lift  # a cell whose ground varies less is one quad (set_instances)
 
     def __init__(self, ctx: moderngl.Context) -> None:
@@ -73,7 +73,10 @@ class ImageRenderer:
         self.flat = _Batch(ctx, self.program, 1)
         self.uneven = _Batch(ctx, self.program, GRID)
         self.instance_count = 0
-        self.textures: SliceTextures | None = None  # shared with the volume renderer
+        self.textures: SliceTextures | None = None
+        self.facing: FacingTable | None = (
+            None  # set by the grass type (render/grass_type.py)  # shared with the volume renderer
+        )
         self.density = 1.0
 
     def set_instances(self, instances: np.ndarray) -> None:
@@ -88,12 +91,18 @@ class ImageRenderer:
             return
         p = self.program
         frame.apply(p, self.technique_color)
+        if self.facing is not None:
+            self.facing.use(frame.lighting)
+            p["u_facing"].value = FACING_UNIT
         p["u_density_channel"].value = self.density_channel
         p["u_lift"].value = self.lift + self.canopy * float(self.textures.height)
         p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
-        p["u_grazing_lean"].value = self.grazing_lean
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
+        p["u_top_spread"].write(spread_levels(self.textures.top.spread))
+        sides, top = self.textures.sides.canopy_color, self.textures.top.canopy_color
+        p["u_mean_normal"].value = tuple(float(v) for v in self.textures.top.mean_normal)
+        p["u_level_tint"].value = tuple(float(v) for v in sides / np.maximum(top, 1e-3))
         p["u_alpha_ref"].value = self.alpha_ref
         p["u_top_color"].value = 0
         p["u_top_data"].value = 1

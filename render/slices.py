@@ -13,7 +13,7 @@ import moderngl
 import numba
 import numpy as np
 
-from core.mipmaps import stacked_slice_mips, weighted_chain
+from core.mipmaps import stacked_slice_mips, threshold_spread, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
 
@@ -28,11 +28,24 @@ from render.textures import texture_with_mips
 # component from two averaged ones would lengthen the normal again and brighten the mips.)
 
 
+SPREAD_LEVELS = 12  # entries of the shaders' per-level spread tables (shaders/_lod.glsl)
+
+
+def spread_levels(spread: np.ndarray) -> bytes:
+    """A per-level spread as the shaders' table: SPREAD_LEVELS floats, the last level repeated."""
+    table = np.full(SPREAD_LEVELS, spread[-1] if len(spread) else 0.0, np.float32)
+    table[: min(len(spread), SPREAD_LEVELS)] = spread[:SPREAD_LEVELS]
+    return table.tobytes()
+
+
 @dataclass
 class LayerTextures:
     color: moderngl.Texture
     data: moderngl.Texture  # see above: normal, threshold
     count: int  # slices stacked along v
+    spread: np.ndarray  # per mip level: the thresholds' spread under a texel (core/mipmaps.py)
+    canopy_color: np.ndarray  # (3,): what a view meets first (canopy_color below)
+    mean_normal: np.ndarray  # (3,): the data's normal over the whole family (smallest level)
 
     def release(self) -> None:
         self.color.release()
@@ -71,16 +84,37 @@ class LayerLevels:
     data: list[np.ndarray]
     count: int  # slices stacked along v
     repeat_v: bool
+    spread: np.ndarray  # per mip level (core/mipmaps.py: threshold_spread)
+    canopy_color: np.ndarray  # (3,)
 
 
 def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5) -> LayerLevels:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
-    color_levels = stacked_slice_mips(layers.color, count, alpha_ref)
+    # vertical slices: their upper rows hide the lower ones in the reduced levels
+    color_levels = stacked_slice_mips(layers.color, count, alpha_ref, upper_first=not top)
     data = canonical_data(layers)
     chain = weighted_chain(data, layers.color[..., 3], count)
     data_levels = [level.reshape(-1, *level.shape[2:]) for level in chain]
-    return LayerLevels(color_levels, data_levels, n, repeat_v=top)
+    spread = threshold_spread(layers.threshold, layers.color[..., 3], count)
+    return LayerLevels(
+        color_levels, data_levels, n, repeat_v=top, spread=spread,
+        canopy_color=canopy_color(layers.color, top),
+    )  # fmt: skip
+
+
+CANOPY_ROWS = 1 / 8  # the top share of a vertical slice's rows a level view meets
+
+
+def canopy_color(color: np.ndarray, top: bool) -> np.ndarray:
+    """(3,) the alpha-weighted mean colour of what a view meets first: from above, the whole top
+    view; level with the grass, the top eighth of the vertical slices' rows (rows run upward):
+    blades' tips and upper parts, lighter than the lower parts the top view shows between them
+    (bench: the blades seen far away 116/147/52 of 255, the slices' top eighth 119/153/50, the
+    top view 102/135/43; scripts/representation_bands.py measures the frames)."""
+    rows = color if top else color[:, -max(int(color.shape[1] * CANOPY_ROWS), 1) :]
+    rgb, alpha = rows[..., :3].reshape(-1, 3), rows[..., 3].reshape(-1, 1)
+    return (rgb * alpha).sum(axis=0) / max(float(alpha.sum()), 1e-6)
 
 
 def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
@@ -89,7 +123,8 @@ def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
     for tex in (color, data):
         tex.repeat_x = True  # slices tile along u like the patch
         tex.repeat_y = levels.repeat_v  # only the top slice tiles along v
-    return LayerTextures(color, data, levels.count)
+    mean_normal = levels.data[-1][..., :3].reshape(-1, 3).mean(axis=0) * 2.0 - 1.0
+    return LayerTextures(color, data, levels.count, levels.spread, levels.canopy_color, mean_normal)
 
 
 @dataclass
@@ -119,6 +154,8 @@ def _stacked(first: LayerLevels, second: LayerLevels) -> LayerLevels:
         [np.concatenate(pair) for pair in zip(first.data, second.data, strict=True)],
         first.count + second.count,
         repeat_v=False,
+        spread=0.5 * (first.spread + second.spread),
+        canopy_color=0.5 * (first.canopy_color + second.canopy_color),
     )
 
 

@@ -14,7 +14,7 @@ import numpy as np
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable
 from render.shaders import load_program
-from render.slices import SliceTextures
+from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
 
 # 8 corners of the unit cube and its 12 triangles, wound counter-clockwise seen from outside.
@@ -87,6 +87,8 @@ class VolumeRenderer(InstancedRenderer):
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
+        p["u_side_spread"].write(spread_levels(t.sides.spread))
+        p["u_top_spread"].write(spread_levels(t.top.spread))
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque

@@ -43,12 +43,14 @@ void main() {
 #elif defined FRAGMENT_SHADER
 
 uniform sampler2D u_top_color;
-uniform sampler2D u_top_data;  // normal (2 components), height, threshold
+uniform sampler2D u_top_data;  // normal, threshold
+uniform float u_top_spread[SPREAD_LEVELS];
+uniform vec3 u_mean_normal;    // the top view's normal averaged over the patch (same encoding)
+uniform vec3 u_level_tint;     // the grass seen level over the grass seen from above (mean colours)  // thresholds' spread under a texel, per mip level
 uniform float u_density;
 uniform float u_alpha_ref;
 uniform float u_top_height;    // typical height of what the slice shows from above (AO_blade)
 uniform vec3 u_eye;
-uniform float u_grazing_lean;  // 0 … 1: how far the normal turns to the viewer at grazing angles
 
 in vec2 v_patch;
 in vec3 v_world;
@@ -67,21 +69,31 @@ void main() {
     vec4 c = texture(u_top_color, uv);
     vec4 data = texture(u_top_data, uv);
     float density = u_density * v_density * design_density(v_design);
-    c.a *= lod_opacity(data.a, density, v_lod);
-    if (c.a < u_alpha_ref) discard;
+    // The top view's alpha is what covers the ground seen from straight above; a ray at
+    // elevation θ crosses the grass layer over 1 / sin θ of its height and meets that many
+    // times the blades: transmittance (1 - a)^(1 / sin θ), as in a layer of random blades.
+    float sin_up = max(normalize(u_eye - v_world).y, 0.02);
+    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), 1.0 / sin_up);
+    if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
+    vec2 texels = uv * vec2(textureSize(u_top_color, 0));
+    float lod = max(log2(max(length(dFdx(texels)), length(dFdy(texels)))), 0.0);
+    // of the blades under the texel, the share kept; alpha-to-coverage draws that share
+    c.a *= lod_share(data.a, level_value(u_top_spread, lod), density, v_lod);
+    if (c.a < 0.02) discard;
     // The normal is not mirrored: far away a mirrored macro-cell would flip the small sideways
     // part of the patch's average normal and light hundreds of cells a few per cent brighter
     // or darker than their neighbours, a checkerboard nobody would see in the blades themselves.
-    vec3 n = slice_normal(data);
-    // The slice keeps the normals of what is seen from straight above (mostly up). Seen at a
-    // grazing angle, grass shows the sides of its blades, whose normals face the viewer: lean the
-    // normal that way as the view flattens, so the far zone lights like the volume beside it.
+    vec3 n = slice_normal(data);  // turned up, as the mean normal
     vec3 to_eye = normalize(u_eye - v_world);
-    vec3 side = normalize(vec3(to_eye.x, 0.0, to_eye.z) + vec3(0.0, 1e-4, 0.0));
-    n = normalize(mix(n, side, u_grazing_lean * (1.0 - abs(to_eye.y))));
-    if (dot(n, to_eye) < 0.0) n = -n;  // two-sided, as the blades and the slices
-    vec3 albedo = modulate(c.rgb, design_color(v_design));
-    vec3 lit = shade(albedo, n, ao_blade(u_top_height, density),
+    // Seen from above, the top view shows between the tips the blades' lower, darker parts, which
+    // a level view does not reach: towards the horizon the colour turns to that of the vertical
+    // slices (their reduced levels keep the upper rows in front, core/mipmaps.py).
+    vec3 albedo = modulate(c.rgb * mix(u_level_tint, vec3(1.0), sin_up), design_color(v_design));
+    // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
+    // the slice's own normal varies about the patch's mean normal.
+    float detail = lambert_through(n) / max(lambert_through(u_mean_normal), 0.05);
+    float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0);
+    vec3 lit = shade_l(albedo, l, ao_blade(u_top_height, density),
                      design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(lit), c.a);
 }

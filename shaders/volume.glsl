@@ -65,6 +65,8 @@ uniform sampler2D u_side_color;
 uniform sampler2D u_side_data;  // normal, threshold
 uniform sampler2D u_top_color; // the horizontal slice: the floor of the volume
 uniform sampler2D u_top_data;
+uniform float u_side_spread[SPREAD_LEVELS];  // thresholds' spread under a texel, per mip level
+uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_floor;         // height of the horizontal slice inside the volume
 uniform int u_skip_steps;      // coarse steps over the height map before the slices
@@ -129,7 +131,7 @@ vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
     vec4 c = textureLod(u_top_color, uv, top_lod);
     vec4 data = textureLod(u_top_data, uv, top_lod);
     float density = u_density * v_density * ground_density(design_uv(v_config, g.xz)).y;
-    c.a *= lod_opacity(data.a, density, v_lod);
+    c.a *= lod_share(data.a, level_value(u_top_spread, top_lod), density, v_lod);
     // unit length here: inside the volume the layer stands for the tips the rays would meet
     vec3 n = normalize(slice_normal(data)) * vec3(v_mirror.x, 1.0, v_mirror.y);
     if (dot(n, -d) < 0.0) n = -n;
@@ -170,6 +172,7 @@ void main() {
     float lod = max(log2(distance(u_eye, v_patch + base) * u_lod_scale), 0.0);
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
+    float side_spread = level_value(u_side_spread, lod);
     float l_facing = facing_lambert(-d);  // the blades' mean diffuse factor from this side
     float depth_lambda = -1.0;
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
@@ -221,7 +224,7 @@ void main() {
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
         float density = u_density * v_density * gd.y;
-        c.a *= lod_opacity(data.a, density, v_lod);
+        c.a *= lod_share(data.a, side_spread, density, v_lod);
         if (c.a > 0.003) {
             gather(c, ao_blade(y, density), l_facing, h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;

@@ -106,3 +106,32 @@ def test_bad_zones_are_refused():
         LodLevel("geometry", 0, 5, macro=4)
     with pytest.raises(ValueError, match="not one of"):
         LodLevel("billboard", 0, 5)
+
+
+def test_share_of_many_blades_is_their_mean_opacity():
+    """A reduced texel's share equals the mean of eq. 5.26 over blades whose thresholds spread
+    uniformly around the texel's mean; near + far keep each blade once; spread 0 is one blade."""
+    from core.lod import SPREAD_WIDTH, share
+
+    rng = np.random.default_rng(5)
+    for mean, spread, density, w in [
+        (0.5, 0.29, 0.6, 2.0),
+        (0.3, 0.1, 0.8, 0.5),
+        (0.6, 0.2, 1.0, 0.6),
+    ]:
+        half = 0.5 * SPREAD_WIDTH * spread
+        t = rng.uniform(mean - half, mean + half, 200000)
+        for far in (False, True):
+            blades = opacity(t, w, density, 1e-4, far).mean()
+            assert abs(share(mean, spread, w, density, 1e-4, far) - blades) < 0.02
+        total = share(mean, spread, w, density, 0.05, False) + share(
+            mean, spread, w, density, 0.05, True
+        )
+        assert abs(total - np.mean(t < density)) < 0.02
+    # a bare cell keeps nothing of any texel, however far its thresholds spread
+    means = np.linspace(0.0, 1.0, 11)
+    assert share(means, 0.29, 2.0, 0.0, 0.05, False).max() < 1e-5
+    t = rng.random(1000)
+    for far in (False, True):
+        single = share(t, 0.0, 0.5, 0.8, 0.05, far)
+        assert np.abs(single - opacity(t, 0.5, 0.8, 0.05, far)).max() < 1e-3
