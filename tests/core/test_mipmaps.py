@@ -88,3 +88,31 @@ def test_bleeding_mixes_partially_transparent_texels_by_alpha():
 def test_odd_sizes_are_refused():
     with pytest.raises(ValueError, match="even"):
         alpha_weighted_reduce(np.zeros((3, 4, 4), np.float32))
+
+
+def test_threshold_spread_grows_from_one_blade_to_all_of_them():
+    """0 at the base level (one blade a texel); over many independent uniform thresholds the
+    spread of a uniform distribution, 1/√12; thresholds that agree spread by nothing."""
+    from core.mipmaps import threshold_spread
+
+    rng = np.random.default_rng(2)
+    alpha = np.ones((2, 64, 64), np.float32)
+    spread = threshold_spread(rng.random((2, 64, 64)), alpha, 7)
+    assert spread[0] == 0.0
+    assert np.all(np.diff(spread) >= 0)
+    assert abs(spread[-1] - 12**-0.5) < 0.02
+    assert threshold_spread(np.full((2, 64, 64), 0.4), alpha, 7).max() < 1e-3
+
+
+def test_upper_rows_hide_the_lower_ones_in_a_vertical_slices_levels():
+    """An opaque upper row's colour is the reduced texel's; alpha stays the covered share."""
+    from core.mipmaps import build_mips_stack
+
+    image = np.zeros((1, 2, 2, 4), np.float32)
+    image[0, 1, :, :] = (1.0, 1.0, 1.0, 1.0)  # upper row (rows run upward): white, opaque
+    image[0, 0, :, :] = (0.0, 0.0, 0.0, 1.0)  # lower row: black, opaque
+    upper = build_mips_stack(image, upper_first=True)[1][0, 0, 0]
+    plain = build_mips_stack(image)[1][0, 0, 0]
+    np.testing.assert_allclose(upper[:3], 1.0, atol=1e-6)
+    np.testing.assert_allclose(plain[:3], 0.5, atol=1e-6)
+    assert upper[3] == plain[3]

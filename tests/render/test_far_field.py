@@ -1,0 +1,26 @@
+"""Far away, the image-based grass shows what the blades show: level with the grass a ray meets
+the tips and covers the ground (shaders/image.glsl), so its colour agrees with the blades' band
+by band down the frame (scripts/representation_bands.py measures the same)."""
+
+import numpy as np
+
+from app.scenes import get_scene
+
+SIZE = (320, 180)
+
+
+def test_image_based_grass_has_the_blades_colour_at_a_grazing_view(headless):
+    doc = get_scene("bench").document()
+    camera = doc.camera("grazing")
+    frames = {}
+    for mode in ("geometry", "image"):
+        renderer = headless(doc, mode=mode)
+        frames[mode] = renderer.render(camera, SIZE, measure=False)[0].astype(np.float64)
+    geometry, image = frames["geometry"], frames["image"]
+    grass = np.abs(geometry - geometry[0, 0]).sum(axis=-1) > 4  # not the sky
+    assert grass.mean() > 0.3
+    assert np.abs(image[grass].mean(axis=0) - geometry[grass].mean(axis=0)).max() < 3.0
+    for rows in np.array_split(np.flatnonzero(grass.any(axis=1)), 4):
+        band = grass[rows]
+        diff = image[rows][band].mean(axis=0) - geometry[rows][band].mean(axis=0)
+        assert np.abs(diff).max() < 7.0, (rows[0], diff)
