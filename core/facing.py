@@ -12,8 +12,10 @@ diffuse factor of the blades seen from `e` is then
 over the patch's vertex normals n_k. A slice's averaged normal cannot give this: averaging
 turns the facing normals of many blades, which point to the viewer, into one short vector that
 points wherever the capture put it, and max(·, 0) of an average is not the average of max(·, 0).
-The volume's vertical slices light with this table (meadow default, quarter-resolution FLIP
-against all-geometry: 3.36 → 3.10 × the floor). The table is small (azimuth × elevation of e
+The image-based grass lights with this table, varied texel by texel by its normal about the
+patch's mean (shaders/image.glsl). (The volume lit with it measured as close to all-geometry as
+with its samples' own normals, and lost the blades' light and shade; it keeps its normals.)
+The table is small (azimuth × elevation of e
 over the upper hemisphere), depends on the light and the patch, and is cheap to rebuild when
 either changes."""
 

@@ -47,7 +47,7 @@ class GrassTypeRenderer:
         self.geometry = GeometryRenderer(ctx)
         self.volumes: dict[int, VolumeRenderer] = {}  # one per slice count (thesis ch. 7)
         self.image = ImageRenderer(ctx)
-        # the blades' mean diffuse factor by view direction, which the volume lights with
+        # the blades' mean diffuse factor by view direction, which the image-based lights with
         self.facing = FacingTable(ctx, lambda: self.patch)
         self.image.facing = self.facing
         self.lod = LodConfig()
@@ -72,7 +72,6 @@ class GrassTypeRenderer:
         if slices not in self.volumes:
             renderer = VolumeRenderer(self.ctx)
             renderer.technique_color = volume_technique_color(slices)
-            renderer.facing = self.facing
             renderer.density = self.geometry.density
             self._set_channel(renderer)
             renderer.set_instances(self._instances)

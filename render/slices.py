@@ -21,9 +21,9 @@ from render.textures import texture_with_mips
 # viewer. The data textures keep every normal turned up (n.y >= 0) before the mips average them,
 # so two faces of similar blades do not cancel out. Averaging shortens the normal, and the
 # shortened normal is kept: the lambert term of an average normal is the average of the lambert
-# terms (the dot product is linear). The horizontal slice's normals light the image-based grass
-# and the volume's floor; the vertical slices' samples take the facing table (core/facing.py),
-# since the lambert term of an average of normals turned to different viewers is not theirs.
+# terms (the dot product is linear), which keeps distant slices as bright as the blades. The
+# image-based grass takes its mean diffuse factor from the facing table (core/facing.py) and only
+# the variation about the patch's mean normal from these.
 # Every data texel: rgb = normal · 0.5 + 0.5, a = density threshold. (Rebuilding a third
 # component from two averaged ones would lengthen the normal again and brighten the mips.)
 

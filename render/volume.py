@@ -12,7 +12,6 @@ import moderngl
 import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
-from render.facing import FACING_UNIT, FacingTable
 from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
@@ -53,7 +52,6 @@ class VolumeRenderer(InstancedRenderer):
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
         self.textures: SliceTextures | None = None
-        self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
         self._owned = False
         self.slices = 0
         self.density = 1.0
@@ -80,9 +78,6 @@ class VolumeRenderer(InstancedRenderer):
             return
         p = self.program
         frame.apply(p, self.technique_color)
-        if self.facing is not None:
-            self.facing.use(frame.lighting)
-            p["u_facing"].value = FACING_UNIT
         p["u_ground"].value = GROUND_UNIT + self.density_channel
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)

@@ -3,9 +3,7 @@
 // casts a ray through the vertical slices of both directions (eqs. 5.7-5.21), composites the
 // samples front to back, stops early when opaque, and writes the depth of its first opaque hit.
 // Aperiodic tiling: the lookups are mirrored by the cell's symmetry vector (eq. 6.6); design
-// maps are sampled at every step through the cell's config transform (6.4). The vertical slices'
-// samples take their diffuse factor from the grass type's facing table (core/facing.py): the mean
-// of the blades' own, seen from this ray's direction, which an averaged slice normal is not.
+// maps are sampled at every step through the cell's config transform (6.4).
 #include "_lighting.glsl"
 #include "_lod.glsl"
 
@@ -173,7 +171,6 @@ void main() {
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
     float side_spread = level_value(u_side_spread, lod);
-    float l_facing = facing_lambert(-d);  // the blades' mean diffuse factor from this side
     float depth_lambda = -1.0;
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
     // on uneven ground the plane follows the ground where the ray enters
@@ -226,7 +223,9 @@ void main() {
         float density = u_density * v_density * gd.y;
         c.a *= lod_share(data.a, side_spread, density, v_lod);
         if (c.a > 0.003) {
-            gather(c, ao_blade(y, density), l_facing, h.xz);  // eqs. 5.19-5.20
+            vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
+            if (dot(n, -d) < 0.0) n = -n;
+            gather(c, ao_blade(y, density), lambert_through(n), h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;
             if (g_alpha > u_opaque) break;
         }

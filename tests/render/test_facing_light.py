@@ -1,5 +1,5 @@
-"""The volume's blades light like the geometry's when the sun moves (render/facing.py): the
-facing table is rebuilt for the new light and the volume brightens and darkens with the
+"""The image-based grass lights like the blades when the sun moves (render/facing.py): the
+facing table is rebuilt for the new light and the far grass brightens and darkens with the
 blades."""
 
 import dataclasses
@@ -17,20 +17,20 @@ def grass_brightness(renderer, camera, sky) -> float:
     return float(image[~sky].mean())
 
 
-def test_volume_follows_the_sun_like_the_blades(headless):
+def test_image_based_grass_follows_the_sun_like_the_blades(headless):
     doc = dataclasses.replace(SCENE, params=SCENE.params.replace(blade_count=800)).document()
     camera = doc.camera("default")
-    geometry, volume = headless(doc, mode="geometry"), headless(doc, mode="volume")
+    geometry, image = headless(doc, mode="geometry"), headless(doc, mode="image")
     first = geometry.render(camera, SIZE, measure=False)[0].astype(np.int32)
     sky = np.abs(first - first[0, 0]).sum(axis=-1) < 4
     assert (~sky).mean() > 0.3
     change = {}
-    for name, renderer in (("geometry", geometry), ("volume", volume)):
+    for name, renderer in (("geometry", geometry), ("image", image)):
         seen = []
         for azimuth in (0.0, 180.0):  # low sun on one side of the blades, then the other
             doc.light = dataclasses.replace(doc.light, sun_elevation=15.0, sun_azimuth=azimuth)
             seen.append(grass_brightness(renderer, camera, sky))
         change[name] = seen[1] - seen[0]
     assert abs(change["geometry"]) > 3.0, change  # the camera sees the sun's side change
-    assert np.sign(change["volume"]) == np.sign(change["geometry"]), change
-    assert 0.5 < change["volume"] / change["geometry"] < 2.0, change
+    assert np.sign(change["image"]) == np.sign(change["geometry"]), change
+    assert 0.5 < change["image"] / change["geometry"] < 2.0, change
