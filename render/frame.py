@@ -394,6 +394,7 @@ class FramePipeline:
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
         order = {"geometry": 0, "image": 1, "volume": 2}
+        self._stack_image_layers()
         passes = [(key, item) for batches in drawn for key, item in batches.items()]
         for (representation, _), (renderer, count) in sorted(
             passes, key=lambda p: (order[p[0][0]], -p[0][1])
@@ -405,6 +406,18 @@ class FramePipeline:
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
         self.overlay.draw(frame)
+
+    def _stack_image_layers(self) -> None:
+        """Tell each type's image-based renderer which types' slices lie below its own."""
+        heights = [
+            (grass.image.layer_height(), grass.density_channel) for grass in self.grass_types
+        ]
+        for grass, (own, _) in zip(self.grass_types, heights, strict=True):
+            grass.image.under_channels = tuple(
+                channel
+                for height, channel in heights
+                if own is not None and height is not None and height < own
+            )
 
     def release(self) -> None:
         for grass in self.grass_types:

@@ -79,6 +79,12 @@ class ImageRenderer:
         )
         self.density = 1.0
 
+    def layer_height(self) -> float | None:
+        """Height of the slice above the ground (None without slices)."""
+        if self.textures is None:
+            return None
+        return self.lift + self.canopy * float(self.textures.height)
+
     def set_instances(self, instances: np.ndarray) -> None:
         """The cells to draw: an INSTANCE_DTYPE array, split by the unplanarity of their ground."""
         flat = instances["ground"][:, 1] <= self.flat_ground
@@ -95,7 +101,8 @@ class ImageRenderer:
             self.facing.use(frame.lighting)
             p["u_facing"].value = FACING_UNIT
         p["u_density_channel"].value = self.density_channel
-        p["u_lift"].value = self.lift + self.canopy * float(self.textures.height)
+        p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
+        p["u_lift"].value = self.layer_height()
         p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon

@@ -46,6 +46,7 @@ uniform sampler2D u_top_color;
 uniform sampler2D u_top_data;  // normal, threshold
 uniform float u_top_spread[SPREAD_LEVELS];
 uniform vec3 u_mean_normal;    // the top view's normal averaged over the patch (same encoding)
+uniform vec4 u_under;          // 1 for each density channel whose grass lies beneath this one
 uniform vec3 u_level_tint;     // the grass seen level over the grass seen from above (mean colours)  // thresholds' spread under a texel, per mip level
 uniform float u_density;
 uniform float u_alpha_ref;
@@ -71,9 +72,13 @@ void main() {
     float density = u_density * v_density * design_density(v_design);
     // The top view's alpha is what covers the ground seen from straight above; a ray at
     // elevation θ crosses the grass layer over 1 / sin θ of its height and meets that many
-    // times the blades: transmittance (1 - a)^(1 / sin θ), as in a layer of random blades.
+    // times the blades: transmittance (1 - a)^(1 / sin θ), as in a layer of random blades —
+    // where the grass reaches the ground. Above another type's grass (u_under: the density
+    // channels of the types whose slices lie lower) a ray that passes between these blades
+    // meets that grass instead: there the top view's own coverage holds.
     float sin_up = max(normalize(u_eye - v_world).y, 0.02);
-    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), 1.0 / sin_up);
+    float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
+    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_up, 1.0));
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
     vec2 texels = uv * vec2(textureSize(u_top_color, 0));
     float lod = max(log2(max(length(dFdx(texels)), length(dFdy(texels)))), 0.0);

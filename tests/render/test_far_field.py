@@ -24,3 +24,16 @@ def test_image_based_grass_has_the_blades_colour_at_a_grazing_view(headless):
         band = grass[rows]
         diff = image[rows][band].mean(axis=0) - geometry[rows][band].mean(axis=0)
         assert np.abs(diff).max() < 7.0, (rows[0], diff)
+
+
+def test_a_taller_types_image_slice_knows_the_grass_beneath_it(headless):
+    """The meadow's tall grass lies above the short grass's image-based slice: level rays that
+    pass between its blades meet the short grass there, so only the short grass covers the
+    ground at a grazing view (shaders/image.glsl: u_under)."""
+    doc = get_scene("meadow").document()
+    renderer = headless(doc, mode="image")
+    renderer.render(doc.camera("default"), (160, 90), measure=False)
+    short, tall = renderer.pipeline.grass_types
+    assert short.image.layer_height() < tall.image.layer_height()
+    assert short.image.under_channels == ()
+    assert tall.image.under_channels == (short.density_channel,)
