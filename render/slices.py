@@ -13,6 +13,7 @@ import moderngl
 import numba
 import numpy as np
 
+from core.canopy import level_view
 from core.mipmaps import stacked_slice_mips, threshold_spread, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
@@ -44,7 +45,7 @@ class LayerTextures:
     data: moderngl.Texture  # see above: normal, threshold
     count: int  # slices stacked along v
     spread: np.ndarray  # per mip level: the thresholds' spread under a texel (core/mipmaps.py)
-    canopy_color: np.ndarray  # (3,): what a view meets first (canopy_color below)
+    mean_color: np.ndarray  # (3,): the base level's alpha-weighted mean colour
     mean_normal: np.ndarray  # (3,): the data's normal over the whole family (smallest level)
 
     def release(self) -> None:
@@ -85,7 +86,7 @@ class LayerLevels:
     count: int  # slices stacked along v
     repeat_v: bool
     spread: np.ndarray  # per mip level (core/mipmaps.py: threshold_spread)
-    canopy_color: np.ndarray  # (3,)
+    mean_color: np.ndarray  # (3,)
 
 
 def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5) -> LayerLevels:
@@ -99,21 +100,13 @@ def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5)
     spread = threshold_spread(layers.threshold, layers.color[..., 3], count)
     return LayerLevels(
         color_levels, data_levels, n, repeat_v=top, spread=spread,
-        canopy_color=canopy_color(layers.color, top),
+        mean_color=mean_color(layers.color),
     )  # fmt: skip
 
 
-CANOPY_ROWS = 1 / 8  # the top share of a vertical slice's rows a level view meets
-
-
-def canopy_color(color: np.ndarray, top: bool) -> np.ndarray:
-    """(3,) the alpha-weighted mean colour of what a view meets first: from above, the whole top
-    view; level with the grass, the top eighth of the vertical slices' rows (rows run upward):
-    blades' tips and upper parts, lighter than the lower parts the top view shows between them
-    (bench: the blades seen far away 116/147/52 of 255, the slices' top eighth 119/153/50, the
-    top view 102/135/43; scripts/representation_bands.py measures the frames)."""
-    rows = color if top else color[:, -max(int(color.shape[1] * CANOPY_ROWS), 1) :]
-    rgb, alpha = rows[..., :3].reshape(-1, 3), rows[..., 3].reshape(-1, 1)
+def mean_color(color: np.ndarray) -> np.ndarray:
+    """(3,) the alpha-weighted mean colour of a family's base level."""
+    rgb, alpha = color[..., :3].reshape(-1, 3), color[..., 3].reshape(-1, 1)
     return (rgb * alpha).sum(axis=0) / max(float(alpha.sum()), 1e-6)
 
 
@@ -124,7 +117,7 @@ def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
         tex.repeat_x = True  # slices tile along u like the patch
         tex.repeat_y = levels.repeat_v  # only the top slice tiles along v
     mean_normal = levels.data[-1][..., :3].reshape(-1, 3).mean(axis=0) * 2.0 - 1.0
-    return LayerTextures(color, data, levels.count, levels.spread, levels.canopy_color, mean_normal)
+    return LayerTextures(color, data, levels.count, levels.spread, levels.mean_color, mean_normal)
 
 
 @dataclass
@@ -135,15 +128,24 @@ class SliceLevels:
     z: LayerLevels
     top: LayerLevels
     height: float
+    # what a view from each elevation of core/canopy.py meets: colour (n, 3), the share of
+    # each row (n, rows) and the rows' heights (rows,)
+    level_colors: np.ndarray
+    level_weights: np.ndarray
+    level_rows: np.ndarray
 
     @classmethod
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
         h = sliced.height
+        colors, weights, rows = level_view([sliced.x.color, sliced.z.color], h)
         return cls(
             layer_levels(sliced.x),
             layer_levels(sliced.z),
             layer_levels(sliced.top, top=True),
             h,
+            colors,
+            weights,
+            rows,
         )
 
 
@@ -155,7 +157,7 @@ def _stacked(first: LayerLevels, second: LayerLevels) -> LayerLevels:
         first.count + second.count,
         repeat_v=False,
         spread=0.5 * (first.spread + second.spread),
-        canopy_color=0.5 * (first.canopy_color + second.canopy_color),
+        mean_color=0.5 * (first.mean_color + second.mean_color),
     )
 
 
@@ -170,6 +172,9 @@ class SliceTextures:
     top: LayerTextures
     height: float
     slices: int  # per direction
+    level_colors: np.ndarray  # SliceLevels
+    level_weights: np.ndarray
+    level_rows: np.ndarray
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
@@ -182,6 +187,9 @@ class SliceTextures:
             upload_levels(ctx, levels.top),
             levels.height,
             levels.x.count,
+            levels.level_colors,
+            levels.level_weights,
+            levels.level_rows,
         )
 
     def release(self) -> None:

@@ -47,7 +47,11 @@ uniform sampler2D u_top_data;  // normal, threshold
 uniform float u_top_spread[SPREAD_LEVELS];
 uniform vec3 u_mean_normal;    // the top view's normal averaged over the patch (same encoding)
 uniform vec4 u_under;          // 1 for each density channel whose grass lies beneath this one
-uniform vec3 u_level_tint;     // the grass seen level over the grass seen from above (mean colours)  // thresholds' spread under a texel, per mip level
+// what a view from each elevation of the table meets (core/canopy.py: θ_j = 90° ((j + ½) / 8)²):
+// colour and height; and the top view's mean colour
+uniform vec3 u_level_colors[8];
+uniform float u_level_height;  // where a level view meets the blades, for AO_blade (render/image.py)
+uniform vec3 u_top_mean;
 uniform float u_density;
 uniform float u_alpha_ref;
 uniform float u_top_height;    // typical height of what the slice shows from above (AO_blade)
@@ -79,6 +83,8 @@ void main() {
     float sin_up = max(normalize(u_eye - v_world).y, 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
     c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_up, 1.0));
+    // how level the view meets this grass's canopy (0 from above, or where it lies on another)
+    float level = (1.0 - sin_up) * (1.0 - under);
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
     vec2 texels = uv * vec2(textureSize(u_top_color, 0));
     float lod = max(log2(max(length(dFdx(texels)), length(dFdy(texels)))), 0.0);
@@ -91,14 +97,20 @@ void main() {
     vec3 n = slice_normal(data);  // turned up, as the mean normal
     vec3 to_eye = normalize(u_eye - v_world);
     // Seen from above, the top view shows between the tips the blades' lower, darker parts, which
-    // a level view does not reach: towards the horizon the colour turns to that of the vertical
-    // slices (their reduced levels keep the upper rows in front, core/mipmaps.py).
-    vec3 albedo = modulate(c.rgb * mix(u_level_tint, vec3(1.0), sin_up), design_color(v_design));
+    // a level view does not reach: towards the horizon the colour turns to what a view from that
+    // elevation meets of the vertical slices (core/canopy.py), where the grass is the ground's.
+    float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
+    int i = int(floor(row));
+    int j = min(i + 1, 7);
+    vec3 met = mix(u_level_colors[i], u_level_colors[j], row - float(i));
+    vec3 tint = met / max(u_top_mean, vec3(1e-3));
+    vec3 albedo = modulate(c.rgb * mix(vec3(1.0), tint, level), design_color(v_design));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
     // the slice's own normal varies about the patch's mean normal.
     float detail = lambert_through(n) / max(lambert_through(u_mean_normal), 0.05);
     float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0);
-    vec3 lit = shade_l(albedo, l, ao_blade(u_top_height, density),
+    // AO_blade (eq. 6.11) where the view meets the blades
+    vec3 lit = shade_l(albedo, l, ao_blade(mix(u_top_height, u_level_height, level), density),
                      design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(lit), c.a);
 }
