@@ -80,7 +80,11 @@ void main() {
     // where the grass reaches the ground. Above another type's grass (u_under: the density
     // channels of the types whose slices lie lower) a ray that passes between these blades
     // meets that grass instead: there the top view's own coverage holds.
-    float sin_up = max(normalize(u_eye - v_world).y, 0.02);
+    // (elevation over the ground: on a slope the grass layer follows the ground, and a hillside
+    // that faces the eye is seen steeply however far away it is)
+    vec3 ground_up = normalize(cross(dFdy(v_world), dFdx(v_world)));
+    if (ground_up.y < 0.0) ground_up = -ground_up;
+    float sin_up = max(dot(normalize(u_eye - v_world), ground_up), 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
     c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_up, 1.0));
     // how level the view meets this grass's canopy (0 from above, or where it lies on another)
