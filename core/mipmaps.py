@@ -84,10 +84,18 @@ def build_mips_stack(
         nxt = np.empty((*_next_size(levels[-1]), 4), np.float32)
         # alpha_weighted_reduce (alpha: mean): colour weighted by alpha, alpha averaged
         src = levels[-1]
-        if upper_first:
-            _upper_first_into(src, nxt)
-        else:
-            _weighted_into(src[..., :3], src[..., 3], nxt[..., :3], nxt[..., 3])
+        weight = np.ascontiguousarray(src[..., 3])
+        if upper_first and src.shape[1] > 1:
+            # of the two rows under a texel (rows run upward) the upper hides the lower by its
+            # alpha: C = (a_u C_u + (1 − a_u) a_l C_l) / (a_u + (1 − a_u) a_l), as the blades'
+            # upper parts hide their lower ones from any eye above the grass
+            weight = weight.copy()
+            weight[:, 0::2] *= 1.0 - src[:, 1::2, :, 3]
+        _weighted_into(src[..., :3], weight, nxt[..., :3], nxt[..., 3])
+        if upper_first:  # alpha stays the plain mean, the true covered share
+            mean_alpha = np.empty((*nxt.shape[:3], 1), np.float32)
+            _weighted_into(src[..., 3:], np.ones_like(weight), mean_alpha, nxt[..., 3])
+            nxt[..., 3] = mean_alpha[..., 0]
         levels.append(nxt)
     # the reductions ran on the unscaled alpha (the true covered share); now rescale each level
     for level in levels[1:]:
@@ -209,45 +217,6 @@ def _weighted_into(src, weight, dst, dst_weight):
                     else:
                         dst[k, y, x, c] = (((c00 + c01) + c10) + c11) * quarter
                 dst_weight[k, y, x] = s * quarter
-
-
-@numba.njit(cache=True)
-def _upper_first_into(src, dst):
-    """One level of a vertical slice's colour chain, seen from above: of the two rows under a
-    texel the upper one hides the lower by its alpha (C = a_u C_u + (1 − a_u) a_l C_l over the
-    weights a_u + (1 − a_u) a_l), as the blades' upper parts hide their lower ones from any eye
-    above the grass; alpha stays the plain mean, the true covered share. Rows run upward."""
-    quarter = np.float32(0.25)
-    one = np.float32(1.0)
-    for k in range(src.shape[0]):
-        for y in range(dst.shape[1]):
-            lo, up = _pairs(src.shape[1], y)
-            for x in range(dst.shape[2]):
-                x0, x1 = _pairs(src.shape[2], x)
-                total = np.float32(0.0)
-                acc0 = np.float32(0.0)
-                acc1 = np.float32(0.0)
-                acc2 = np.float32(0.0)
-                plain = np.float32(0.0)
-                for xx in (x0, x1):
-                    a_u, a_l = src[k, up, xx, 3], src[k, lo, xx, 3]
-                    w_u, w_l = a_u, (one - a_u) * a_l
-                    total += w_u + w_l
-                    acc0 += w_u * src[k, up, xx, 0] + w_l * src[k, lo, xx, 0]
-                    acc1 += w_u * src[k, up, xx, 1] + w_l * src[k, lo, xx, 1]
-                    acc2 += w_u * src[k, up, xx, 2] + w_l * src[k, lo, xx, 2]
-                    plain += a_u + a_l
-                if total > 0.0:
-                    dst[k, y, x, 0] = acc0 / total
-                    dst[k, y, x, 1] = acc1 / total
-                    dst[k, y, x, 2] = acc2 / total
-                else:
-                    for c in range(3):
-                        dst[k, y, x, c] = (
-                            (src[k, lo, x0, c] + src[k, lo, x1, c]) + src[k, up, x0, c]
-                        ) + src[k, up, x1, c]
-                        dst[k, y, x, c] *= quarter
-                dst[k, y, x, 3] = plain * quarter
 
 
 def stacked_slice_mips(
