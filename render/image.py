@@ -14,9 +14,11 @@ from render.ground import grid_mesh
 from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
-from render.volume import TOP_HEIGHT
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
+# Seen from above, grass shows mostly its upper parts: the slice's AO_blade (eq. 6.11) is taken
+# at this fraction of the grass height.
+TOP_HEIGHT = 0.7
 # A level view meets the tips: AO_blade (eq. 6.11) is taken at the middle of the grass's top
 # eighth there. (AO averaged over the heights core/canopy.py's table meets measured darker than
 # the blades: sward quality 480x270, bench zones image region 4.5 against 2.1 x the floor,

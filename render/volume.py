@@ -25,11 +25,6 @@ _FACES = np.array(
 )  # fmt: skip
 
 
-# Seen from above, grass shows mostly its upper parts: the horizontal slice's AO_blade (eq. 6.11)
-# is taken at this fraction of the grass height.
-TOP_HEIGHT = 0.7
-
-
 class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
     density_channel = 0  # the grass type's channel of the density map (render/layer.py)
@@ -92,7 +87,6 @@ class VolumeRenderer(InstancedRenderer):
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = self.floor * float(t.height)
         p["u_skip_steps"].value = self.skip_steps
-        p["u_top_height"].value = TOP_HEIGHT * float(t.height)
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
         for unit, (name, tex) in enumerate(
             [

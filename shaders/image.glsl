@@ -86,7 +86,8 @@ void main() {
     if (ground_up.y < 0.0) ground_up = -ground_up;
     float sin_up = max(dot(normalize(u_eye - v_world), ground_up), 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
-    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_up, 1.0));
+    float sin_cover = min(sin_up, max(normalize(u_eye - v_world).y, 0.02));
+    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_cover, 1.0));
     // how level the view meets this grass's canopy (0 from above, or where it lies on another)
     float level = (1.0 - sin_up) * (1.0 - under);
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)

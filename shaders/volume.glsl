@@ -68,7 +68,6 @@ uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_floor;         // height of the horizontal slice inside the volume
 uniform int u_skip_steps;      // coarse steps over the height map before the slices
-uniform float u_top_height;    // typical height of what the horizontal slice shows (AO_blade)
 // the height map and this grass type's density in one texture (render/design_maps.py): the ray
 // reads both at every step with one fetch; the same texels as u_design's height and density
 uniform sampler2D u_ground;
@@ -133,7 +132,9 @@ vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
     // unit length here: inside the volume the layer stands for the tips the rays would meet
     vec3 n = normalize(slice_normal(data)) * vec3(v_mirror.x, 1.0, v_mirror.y);
     if (dot(n, -d) < 0.0) n = -n;
-    ao_l = vec2(ao_blade(u_top_height, density), lambert_through(n));
+    // AO_blade at the layer's own height (at the top view's 0.7 of the grass, the layer lit the
+    // steep views it catches brighter than the blades there)
+    ao_l = vec2(ao_blade(u_floor, density), lambert_through(n));
     return c;
 }
 
