@@ -8,12 +8,16 @@ whole region.
     .venv/bin/python scripts/representation_bands.py [--scene bench] [--camera zones]
         [--size 480x270] [--band 15] [--only volume,image]
 
+With --height-view the blades are black at the root and white at the tip, lit by white ambient
+light alone without AO: a band's grey is the height along the blades that its pixels meet.
+
 Prints JSON: per band its first row, the geometry's mean RGB (0 … 255) and each
 representation's difference from it."""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -34,9 +38,21 @@ def main() -> None:
     ap.add_argument("--size", default="480x270")
     ap.add_argument("--band", type=int, default=15)
     ap.add_argument("--only", default="volume,image")
+    ap.add_argument("--height-view", action="store_true")
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
-    document = get_scene(args.scene).document()
+    scene = get_scene(args.scene)
+    if args.height_view:
+        params = scene.params.replace(
+            root_color=(0.0, 0.0, 0.0), tip_color=(1.0, 1.0, 1.0), blade_color_variation=0.0
+        )
+        scene = dataclasses.replace(scene, params=params)
+    document = scene.document()
+    if args.height_view:
+        document.light = dataclasses.replace(
+            document.light, sun_color=(0.0, 0.0, 0.0), ambient_color=(1.0, 1.0, 1.0),
+            blade_ao_impact=0.0,
+        )  # fmt: skip
     camera = document.camera(args.camera)
     ctx = standalone()
     images = {}
