@@ -172,6 +172,8 @@ void main() {
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
     float side_spread = level_value(u_side_spread, lod);
+    float crossing_x = 1.0 / max(abs(d.x), 0.25);
+    float crossing_z = 1.0 / max(abs(d.z), 0.25);
     float depth_lambda = -1.0;
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
     // on uneven ground the plane follows the ground where the ray enters
@@ -214,6 +216,7 @@ void main() {
             continue;
         }
         float plane = hit_x ? pi.x : pi.y;
+        float crossing = hit_x ? crossing_x : crossing_z;
         float slice = mod(floor(plane * u_slices), u_slices);
         // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
         if ((hit_x ? v_mirror.x : v_mirror.y) < 0.0) slice = u_slices - 1.0 - slice;
@@ -222,6 +225,9 @@ void main() {
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
         float density = u_density * v_density * gd.y;
+        // opacity correction: a slice holds what a ray across its slab meets at right angles;
+        // this ray crosses the slab over 1 / |cos φ| of that (at most 4 times)
+        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 1.0), crossing);
         c.a *= lod_share(data.a, side_spread, density, v_lod);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
