@@ -6,7 +6,7 @@ shows as a trend down the rows; FLIP against all-geometry (`sward quality`) coun
 whole region.
 
     .venv/bin/python scripts/representation_bands.py [--scene bench] [--camera zones]
-        [--size 480x270] [--band 15] [--only volume,image]
+        [--size 480x270] [--band 15] [--only volume,image] [--height-view] [--blades N]
 
 With --height-view the blades are black at the root and white at the tip, lit by white ambient
 light alone without AO: a band's grey is the height along the blades that its pixels meet.
@@ -39,9 +39,14 @@ def main() -> None:
     ap.add_argument("--band", type=int, default=15)
     ap.add_argument("--only", default="volume,image")
     ap.add_argument("--height-view", action="store_true")
+    ap.add_argument(
+        "--blades", type=int, default=None, help="blades per patch instead of the scene's"
+    )
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
     scene = get_scene(args.scene)
+    if args.blades is not None:
+        scene = dataclasses.replace(scene, params=scene.params.replace(blade_count=args.blades))
     if args.height_view:
         params = scene.params.replace(
             root_color=(0.0, 0.0, 0.0), tip_color=(1.0, 1.0, 1.0), blade_color_variation=0.0
