@@ -86,6 +86,8 @@ void main() {
     if (ground_up.y < 0.0) ground_up = -ground_up;
     float sin_up = max(dot(normalize(u_eye - v_world), ground_up), 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
+    // The blades stand upright whatever the slope: how many a ray meets goes by the smaller of its
+    // elevation over the ground and over the horizon.
     float sin_cover = min(sin_up, max(normalize(u_eye - v_world).y, 0.02));
     c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_cover, 1.0));
     // how level the view meets this grass's canopy (0 from above, or where it lies on another)
