@@ -10,8 +10,7 @@ From the vertical slices (rows run upward, row 0 at the ground), per row y of th
 - the blades' colour there, c(y), alpha-weighted over the slices.
 A ray that enters the grass from above at elevation θ descends Δy while it travels Δy / tan θ,
 so the share it gives row y is w(y) = T(y) · (1 − exp(−σ(y) Δy / tan θ)), T the transmittance
-of the rows above. The table holds, per elevation, Σ w c / Σ w (the colour met) and
-the weights w / Σ w of the rows."""
+of the rows above. The table holds, per elevation, Σ w c / Σ w: the colour met."""
 
 from __future__ import annotations
 
@@ -25,33 +24,24 @@ def elevations(count: int = ELEVATIONS) -> np.ndarray:
     return 0.5 * np.pi * ((np.arange(count) + 0.5) / count) ** 2
 
 
-def level_view(
-    families: list[np.ndarray], height: float, count: int = ELEVATIONS
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(count, 3) colours met at each table elevation, (count, rows) the share of each row of
-    what is met (rows run upward) and (rows,) the rows' heights, averaged over the families of
-    vertical slices ((n, rows, w, 4) colour + alpha arrays, 0 … 1)."""
-    colours, weights = [], []
+def level_view(families: list[np.ndarray], height: float, count: int = ELEVATIONS) -> np.ndarray:
+    """(count, 3) colours met at each table elevation, averaged over the families of vertical
+    slices ((n, rows, w, 4) colour + alpha arrays, 0 … 1, rows running upward)."""
+    colours = []
     for color in families:
-        rows = color.shape[1]
-        alpha = np.clip(color[..., 3].mean(axis=2), 0.0, 1.0)  # (n, rows)
+        a = color[..., 3]
+        alpha = np.clip(a.mean(axis=2), 0.0, 1.0)  # (n, rows)
         through = 1.0 - np.prod(1.0 - alpha, axis=0)  # (rows,)
         sigma = -np.log(np.maximum(1.0 - through, 1e-6))  # per patch length
-        a = color[..., 3:4]
-        c = (color[..., :3] * a).sum(axis=(0, 2)) / np.maximum(a.sum(axis=(0, 2)), 1e-9)
+        n, rows, w = a.shape
+        # per row, the colour weighted by alpha (one batched product over the columns)
+        sums = np.matmul(a.reshape(n * rows, 1, w), color[..., :3].reshape(n * rows, w, 3))
+        c = sums.reshape(n, rows, 3).sum(axis=0) / np.maximum(a.sum(axis=(0, 2)), 1e-9)[:, None]
         dy = height / rows
-        y = (np.arange(rows) + 0.5) * dy
-        fam_c, fam_w = [], []
+        met = []
         for theta in elevations(count):
             tau = sigma[::-1] * dy / max(np.tan(theta), 1e-3)  # the rows from the top down
             w = np.exp(-np.concatenate([[0.0], np.cumsum(tau)[:-1]])) * (1.0 - np.exp(-tau))
-            total = max(float(w.sum()), 1e-9)
-            fam_c.append((w[:, None] * c[::-1]).sum(axis=0) / total)
-            fam_w.append(w[::-1] / total)
-        colours.append(fam_c)
-        weights.append(fam_w)
-    return (
-        np.mean(colours, axis=0).astype(np.float32),
-        np.mean(weights, axis=0).astype(np.float32),
-        y.astype(np.float32),
-    )
+            met.append((w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9))
+        colours.append(met)
+    return np.mean(colours, axis=0).astype(np.float32)

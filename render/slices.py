@@ -45,7 +45,9 @@ class LayerTextures:
     data: moderngl.Texture  # see above: normal, threshold
     count: int  # slices stacked along v
     spread: np.ndarray  # per mip level: the thresholds' spread under a texel (core/mipmaps.py)
-    mean_color: np.ndarray  # (3,): the base level's alpha-weighted mean colour
+    # (3,) the family's colour: its smallest level, where the alpha-weighted reductions (eq.
+    # 4.10) leave the blades' mean colour
+    mean_color: np.ndarray
     mean_normal: np.ndarray  # (3,): the data's normal over the whole family (smallest level)
 
     def release(self) -> None:
@@ -100,14 +102,8 @@ def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5)
     spread = threshold_spread(layers.threshold, layers.color[..., 3], count)
     return LayerLevels(
         color_levels, data_levels, n, repeat_v=top, spread=spread,
-        mean_color=mean_color(layers.color),
+        mean_color=color_levels[-1][..., :3].reshape(-1, 3).mean(axis=0),
     )  # fmt: skip
-
-
-def mean_color(color: np.ndarray) -> np.ndarray:
-    """(3,) the alpha-weighted mean colour of a family's base level."""
-    rgb, alpha = color[..., :3].reshape(-1, 3), color[..., 3].reshape(-1, 1)
-    return (rgb * alpha).sum(axis=0) / max(float(alpha.sum()), 1e-6)
 
 
 def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
@@ -128,24 +124,18 @@ class SliceLevels:
     z: LayerLevels
     top: LayerLevels
     height: float
-    # what a view from each elevation of core/canopy.py meets: colour (n, 3), the share of
-    # each row (n, rows) and the rows' heights (rows,)
-    level_colors: np.ndarray
-    level_weights: np.ndarray
-    level_rows: np.ndarray
+    level_colors: np.ndarray  # (n, 3): what a view from each elevation meets (core/canopy.py)
 
     @classmethod
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
         h = sliced.height
-        colors, weights, rows = level_view([sliced.x.color, sliced.z.color], h)
+        colors = level_view([sliced.x.color, sliced.z.color], h)
         return cls(
             layer_levels(sliced.x),
             layer_levels(sliced.z),
             layer_levels(sliced.top, top=True),
             h,
             colors,
-            weights,
-            rows,
         )
 
 
@@ -173,8 +163,6 @@ class SliceTextures:
     height: float
     slices: int  # per direction
     level_colors: np.ndarray  # SliceLevels
-    level_weights: np.ndarray
-    level_rows: np.ndarray
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
@@ -188,8 +176,6 @@ class SliceTextures:
             levels.height,
             levels.x.count,
             levels.level_colors,
-            levels.level_weights,
-            levels.level_rows,
         )
 
     def release(self) -> None:

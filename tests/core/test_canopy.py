@@ -14,23 +14,21 @@ def slices(rows_rgba):
 
 def test_an_opaque_top_row_is_all_a_low_view_meets():
     stack = slices([(0.0, 0.0, 1.0, 1.0)] * 3 + [(1.0, 0.0, 0.0, 1.0)])
-    colours, weights, rows = level_view([stack], 1.0)
+    colours = level_view([stack], 1.0)
     low = elevations() < np.radians(20.0)
     np.testing.assert_allclose(colours[low], np.tile([1.0, 0.0, 0.0], (low.sum(), 1)), atol=1e-3)
-    assert weights[low, -1].min() > 0.999 and np.allclose(rows, [0.125, 0.375, 0.625, 0.875])
 
 
 def test_empty_rows_are_seen_through():
     stack = slices([(0.0, 1.0, 0.0, 1.0)] * 2 + [(1.0, 0.0, 0.0, 0.0)] * 2)
-    colours, _, _ = level_view([stack], 1.0)
+    colours = level_view([stack], 1.0)
     np.testing.assert_allclose(colours[:, 1], 1.0, atol=1e-3)
 
 
 def test_the_flatter_the_view_the_more_of_the_upper_rows_it_meets():
     """Sparse rows: a steep view reaches the lower rows, a level one stops near the top."""
     stack = slices([(0.0, 0.0, 1.0, 0.1)] * 4 + [(1.0, 0.0, 0.0, 0.1)] * 4)
-    colours, weights, _ = level_view([stack], 1.0)
+    colours = level_view([stack], 1.0)
     red = colours[:, 0]
     assert np.all(np.diff(red) < 0)  # elevations rise: less and less of the top
     assert red[0] > 0.9 and red[-1] < 0.7
-    np.testing.assert_allclose(weights.sum(axis=1), 1.0, atol=1e-5)
