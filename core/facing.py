@@ -13,8 +13,9 @@ over the patch's vertex normals n_k. A slice's averaged normal cannot give this:
 turns the facing normals of many blades, which point to the viewer, into one short vector that
 points wherever the capture put it, and max(·, 0) of an average is not the average of max(·, 0).
 The image-based grass lights with this table, varied texel by texel by its normal about the
-patch's mean (shaders/image.glsl). (The volume lit with it measured as close to all-geometry as
-with its samples' own normals, and lost the blades' light and shade; it keeps its normals.)
+patch's mean (shaders/image.glsl). The volume lights its horizontal slice with it, and its
+vertical slices' samples with their own normals, blended towards the table as far as averaging
+has shortened them (shaders/volume.glsl; the table alone lost the near blades' light and shade).
 The table is small (azimuth × elevation of e
 over the upper hemisphere), depends on the light and the patch, and is cheap to rebuild when
 either changes."""

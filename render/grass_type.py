@@ -73,6 +73,7 @@ class GrassTypeRenderer:
             renderer = VolumeRenderer(self.ctx)
             renderer.technique_color = volume_technique_color(slices)
             renderer.density = self.geometry.density
+            renderer.facing = self.facing
             self._set_channel(renderer)
             renderer.set_instances(self._instances)
             if slices in self._slices:

@@ -41,6 +41,8 @@ class GroundRenderer:
             index_element_size=4,
         )
         self.grass_rect = (0.0, 0.0, 0.0, 0.0)
+        # the soil under the grass, shaded by it (diagnostics draw it black to see the grass)
+        self.under_grass = tuple(0.55 * c for c in (0.30, 0.30, 0.12))
 
     def draw(self, frame: FrameUniforms) -> None:
         frame.apply(self.program)
@@ -48,7 +50,7 @@ class GroundRenderer:
         p = self.program
         p["u_extent"].value = self.extent
         p["u_soil_color"].value = light.soil_color
-        p["u_under_grass"].value = tuple(0.55 * c for c in (0.30, 0.30, 0.12))
+        p["u_under_grass"].value = self.under_grass
         p["u_fog_color"].value = light.sky_color
         p["u_fog_distance"].value = light.fog_distance
         p["u_grass_rect"].value = self.grass_rect

@@ -21,10 +21,12 @@ from render.textures import texture_with_mips
 # Blades are two-sided: a normal and its negation light alike once a shader turns it to the
 # viewer. The data textures keep every normal turned up (n.y >= 0) before the mips average them,
 # so two faces of similar blades do not cancel out. Averaging shortens the normal, and the
-# shortened normal is kept: the lambert term of an average normal is the average of the lambert
-# terms (the dot product is linear), which keeps distant slices as bright as the blades. The
-# image-based grass takes its mean diffuse factor from the facing table (core/facing.py) and only
-# the variation about the patch's mean normal from these.
+# shortened normal is kept: its length says how many ways the texel's blades face. The lambert
+# term of a short average is not the average of its blades' (each blade turns its face to the
+# viewer, and max(·, 0) is not linear): the volume blends a texel's lambert towards the facing
+# table (core/facing.py) as far as its normal is shortened, and the image-based grass takes its
+# mean diffuse factor from the table and only the variation about the patch's mean normal from
+# these.
 # Every data texel: rgb = normal · 0.5 + 0.5, a = density threshold. (Rebuilding a third
 # component from two averaged ones would lengthen the normal again and brighten the mips.)
 

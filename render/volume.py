@@ -12,6 +12,7 @@ import moderngl
 import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
+from render.facing import FACING_UNIT, FacingTable
 from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
@@ -50,6 +51,7 @@ class VolumeRenderer(InstancedRenderer):
         self._owned = False
         self.slices = 0
         self.density = 1.0
+        self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
 
     def set_slices(self, textures: SliceTextures | None, owned: bool = True) -> None:
         """The slices to draw. With owned=False the caller keeps and releases them."""
@@ -88,6 +90,11 @@ class VolumeRenderer(InstancedRenderer):
         p["u_floor"].value = self.floor * float(t.height)
         p["u_skip_steps"].value = self.skip_steps
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
+        # how short averaging makes a normal at most (shaders/volume.glsl blends by it)
+        p["u_side_mean_length"].value = min(float(np.linalg.norm(t.sides.mean_normal)), 0.99)
+        if self.facing is not None:
+            self.facing.use(frame.lighting)
+            p["u_facing"].value = FACING_UNIT
         for unit, (name, tex) in enumerate(
             [
                 ("u_side_color", t.sides.color),

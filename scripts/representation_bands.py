@@ -6,10 +6,15 @@ shows as a trend down the rows; FLIP against all-geometry (`sward quality`) coun
 whole region.
 
     .venv/bin/python scripts/representation_bands.py [--scene bench] [--camera zones]
-        [--size 480x270] [--band 15] [--only volume,image] [--height-view] [--blades N]
+        [--size 480x270] [--band 15] [--only volume,image] [--height-view | --coverage-view
+        | --sun-view]
+        [--blades N]
 
 With --height-view the blades are black at the root and white at the tip, lit by white ambient
 light alone without AO: a band's grey is the height along the blades that its pixels meet.
+With --coverage-view the blades are white and the ground black, lit the same way: a band's grey
+is the share of its pixels that the grass covers. With --sun-view the white blades are lit by a
+white sun alone, over black ground: a band's grey is the diffuse factor its pixels show.
 
 Prints JSON: per band its first row, the geometry's mean RGB (0 … 255) and each
 representation's difference from it."""
@@ -39,6 +44,8 @@ def main() -> None:
     ap.add_argument("--band", type=int, default=15)
     ap.add_argument("--only", default="volume,image")
     ap.add_argument("--height-view", action="store_true")
+    ap.add_argument("--coverage-view", action="store_true")
+    ap.add_argument("--sun-view", action="store_true")
     ap.add_argument(
         "--blades", type=int, default=None, help="blades per patch instead of the scene's"
     )
@@ -47,22 +54,27 @@ def main() -> None:
     scene = get_scene(args.scene)
     if args.blades is not None:
         scene = dataclasses.replace(scene, params=scene.params.replace(blade_count=args.blades))
-    if args.height_view:
+    white = args.coverage_view or args.sun_view
+    if args.height_view or white:
+        root = (1.0, 1.0, 1.0) if white else (0.0, 0.0, 0.0)
         params = scene.params.replace(
-            root_color=(0.0, 0.0, 0.0), tip_color=(1.0, 1.0, 1.0), blade_color_variation=0.0
+            root_color=root, tip_color=(1.0, 1.0, 1.0), blade_color_variation=0.0
         )
         scene = dataclasses.replace(scene, params=params)
     document = scene.document()
-    if args.height_view:
+    if args.height_view or white:
+        sun, ambient = ((1.0,) * 3, (0.0,) * 3) if args.sun_view else ((0.0,) * 3, (1.0,) * 3)
         document.light = dataclasses.replace(
-            document.light, sun_color=(0.0, 0.0, 0.0), ambient_color=(1.0, 1.0, 1.0),
-            blade_ao_impact=0.0,
+            document.light, sun_color=sun, ambient_color=ambient, blade_ao_impact=0.0,
+            soil_color=(0.0, 0.0, 0.0), fog_distance=1e6,
         )  # fmt: skip
     camera = document.camera(args.camera)
     ctx = standalone()
     images = {}
     for mode in ["geometry", *args.only.split(",")]:
         with HeadlessRenderer(document, ctx, mode=mode) as renderer:
+            if white:
+                renderer.pipeline.ground.under_grass = (0.0, 0.0, 0.0)
             renderer.render(camera, size, measure=False)  # slices convert, shaders compile
             images[mode] = renderer.render(camera, size, measure=False)[0].astype(np.float64)
     reference = images.pop("geometry")

@@ -66,6 +66,7 @@ uniform sampler2D u_top_data;
 uniform float u_side_spread[SPREAD_LEVELS];  // thresholds' spread under a texel, per mip level
 uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
+uniform float u_side_mean_length;  // length of the vertical slices' mean normal (smallest level)
 uniform float u_floor;         // height of the horizontal slice inside the volume
 uniform int u_skip_steps;      // coarse steps over the height map before the slices
 // the height map and this grass type's density in one texture (render/design_maps.py): the ray
@@ -129,12 +130,13 @@ vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
     vec4 data = textureLod(u_top_data, uv, top_lod);
     float density = u_density * v_density * ground_density(design_uv(v_config, g.xz)).y;
     c.a *= lod_share(data.a, level_value(u_top_spread, top_lod), density, v_lod);
-    // unit length here: inside the volume the layer stands for the tips the rays would meet
-    vec3 n = normalize(slice_normal(data)) * vec3(v_mirror.x, 1.0, v_mirror.y);
-    if (dot(n, -d) < 0.0) n = -n;
     // AO_blade at the layer's own height (at the top view's 0.7 of the grass, the layer lit the
-    // steep views it catches brighter than the blades there)
-    ao_l = vec2(ao_blade(u_floor, density), lambert_through(n));
+    // steep views it catches brighter than the blades there). Its texels hold many blades each:
+    // lit by the blades' mean diffuse factor seen from the ray (the facing table). Its averaged
+    // normal, turned up and made unit length, faced the sky and lit the steep views near the
+    // eye 15/255 brighter than the blades (scripts/representation_bands.py --sun-view, meadow
+    // path).
+    ao_l = vec2(ao_blade(u_floor, density), facing_lambert(-d));
     return c;
 }
 
@@ -235,7 +237,16 @@ void main() {
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
             if (dot(n, -d) < 0.0) n = -n;
-            gather(c, ao_blade(y, density), lambert_through(n), h.xz);  // eqs. 5.19-5.20
+            // A texel's normal is the mean of its blades' (render/slices.py): of one blade near
+            // the eye, of many far away, where the mean is short and lights them as one dull
+            // face (the far volume 5-17/255 darker than the blades in --sun-view). Lit by its
+            // own direction, blended towards the blades' mean diffuse factor seen from the ray
+            // (the facing table) as far as the averaging shortened it, from unit length to that
+            // of the family's mean normal.
+            float len = length(n);
+            float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
+            float l = mix(lambert_through(n / max(len, 1e-4)), facing_lambert(-d), k);
+            gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;
             if (g_alpha > u_opaque) break;
         }
