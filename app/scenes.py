@@ -77,6 +77,17 @@ class Scene:
             props=tuple(Prop(*row) for row in self.props),
         )
 
+    def recoloured(self, root: tuple, tip: tuple) -> Scene:
+        """Every grass type's blades in one ramp from `root` to `tip`, without variation: the
+        diagnostic views of scripts/representation_bands.py and the tests that compare
+        representations by light or coverage alone."""
+
+        def ramp(params: PatchParams) -> PatchParams:
+            return params.replace(root_color=root, tip_color=tip, blade_color_variation=0.0)
+
+        grass = tuple(replace(g, params=ramp(g.params)) for g in self.grass)
+        return replace(self, params=ramp(self.params), grass=grass)
+
     def resized(self, columns: int, rows: int) -> Scene:
         """The scene over columns × rows cells: its maps are made anew at a size that keeps
         their texels per cell (so hills, paths and markings stretch with the terrain), at most

@@ -57,10 +57,7 @@ def main() -> None:
     white = args.coverage_view or args.sun_view
     if args.height_view or white:
         root = (1.0, 1.0, 1.0) if white else (0.0, 0.0, 0.0)
-        params = scene.params.replace(
-            root_color=root, tip_color=(1.0, 1.0, 1.0), blade_color_variation=0.0
-        )
-        scene = dataclasses.replace(scene, params=params)
+        scene = scene.recoloured(root, (1.0, 1.0, 1.0))  # every grass type
     document = scene.document()
     if args.height_view or white:
         sun, ambient = ((1.0,) * 3, (0.0,) * 3) if args.sun_view else ((0.0,) * 3, (1.0,) * 3)
