@@ -45,20 +45,3 @@ def level_view(families: list[np.ndarray], height: float, count: int = ELEVATION
             met.append((w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9))
         colours.append(met)
     return np.mean(colours, axis=0).astype(np.float32)
-
-
-def side_to_top(families: list[np.ndarray], top: np.ndarray, height: float) -> float:
-    """How much more a ray meets of the blades from the side than from above: the optical depth
-    of the grass layer crossed level over one patch length, Σ_y σ(y) Δy (the families' mean),
-    over the top view's, −ln(1 − ā) of its mean alpha. A ray at elevation θ over flat ground
-    crosses the layer over h / sin θ; the blades' faces turned up meet it in proportion to
-    sin θ, their upright faces to cos θ: its depth is τ_top (1 + R cot θ), R this ratio
-    (shaders/image.glsl)."""
-    depths = []
-    for color in families:
-        alpha = np.clip(color[..., 3].mean(axis=2), 0.0, 1.0)  # (n, rows)
-        through = 1.0 - np.prod(1.0 - alpha, axis=0)
-        sigma = -np.log(np.maximum(1.0 - through, 1e-6))
-        depths.append(float(sigma.sum()) * height / alpha.shape[1])
-    top_alpha = float(np.clip(top[..., 3].mean(), 0.0, 1.0 - 1e-6))
-    return float(np.mean(depths)) / max(-np.log(1.0 - top_alpha), 1e-6)

@@ -113,7 +113,6 @@ class ImageRenderer:
         p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
         p["u_level_height"].value = (1.0 - 0.5 * CANOPY_ROWS) * float(self.textures.height)
-        p["u_side_to_top"].value = float(self.textures.side_to_top)
         p["u_top_mean"].value = tuple(float(v) for v in self.textures.top.mean_color)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon

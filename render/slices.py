@@ -13,7 +13,7 @@ import moderngl
 import numba
 import numpy as np
 
-from core.canopy import level_view, side_to_top
+from core.canopy import level_view
 from core.mipmaps import stacked_slice_mips, threshold_spread, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
@@ -127,7 +127,6 @@ class SliceLevels:
     top: LayerLevels
     height: float
     level_colors: np.ndarray  # (n, 3): what a view from each elevation meets (core/canopy.py)
-    side_to_top: float  # the layer's optical depth from the side over that from above (same)
 
     @classmethod
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
@@ -139,7 +138,6 @@ class SliceLevels:
             layer_levels(sliced.top, top=True),
             h,
             colors,
-            side_to_top([sliced.x.color, sliced.z.color], sliced.top.color, h),
         )
 
 
@@ -167,7 +165,6 @@ class SliceTextures:
     height: float
     slices: int  # per direction
     level_colors: np.ndarray  # SliceLevels
-    side_to_top: float  # SliceLevels
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
@@ -181,7 +178,6 @@ class SliceTextures:
             levels.height,
             levels.x.count,
             levels.level_colors,
-            levels.side_to_top,
         )
 
     def release(self) -> None:

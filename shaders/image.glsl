@@ -52,7 +52,6 @@ uniform vec4 u_under;          // 1 for each density channel whose grass lies be
 uniform vec3 u_level_colors[8];
 uniform float u_level_height;  // where a level view meets the blades, for AO_blade (render/image.py)
 uniform vec3 u_top_mean;
-uniform float u_side_to_top;   // the layer's optical depth level over that from above
 uniform float u_density;
 uniform float u_alpha_ref;
 uniform float u_top_height;    // typical height of what the slice shows from above (AO_blade)
@@ -75,29 +74,22 @@ void main() {
     vec4 c = texture(u_top_color, uv);
     vec4 data = texture(u_top_data, uv);
     float density = u_density * v_density * design_density(v_design);
-    // The top view's alpha is what covers the ground seen from straight above; a ray that meets
-    // k times its blades is let through (1 - a)^k, as in a layer of random blades — where the
-    // grass reaches the ground. Above another type's grass (u_under: the density channels of
-    // the types whose slices lie lower) a ray that passes between these blades meets that grass
-    // instead: there the top view's own coverage holds.
+    // The top view's alpha is what covers the ground seen from straight above; a ray at
+    // elevation θ crosses the grass layer over 1 / sin θ of its height and meets that many
+    // times the blades: transmittance (1 - a)^(1 / sin θ), as in a layer of random blades —
+    // where the grass reaches the ground. Above another type's grass (u_under: the density
+    // channels of the types whose slices lie lower) a ray that passes between these blades
+    // meets that grass instead: there the top view's own coverage holds.
     // (elevation over the ground: on a slope the grass layer follows the ground, and a hillside
     // that faces the eye is seen steeply however far away it is)
     vec3 ground_up = normalize(cross(dFdy(v_world), dFdx(v_world)));
     if (ground_up.y < 0.0) ground_up = -ground_up;
     float sin_up = max(dot(normalize(u_eye - v_world), ground_up), 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
-    // k (core/canopy.py side_to_top): the ray crosses the layer, h high over ground sloping by
-    // α (cos α = ground_up.y), over h cos α / sin θ_g (θ_g its elevation over the ground), and
-    // meets the blades' upturned faces in proportion to sin θ, their upright ones to R cos θ
-    // (θ its elevation over the horizon: the blades stand upright whatever the slope). On flat
-    // ground k = 1 + R cot θ. (1 / sin θ before, the layer's blades taken as facing every way:
-    // level views met too few; meadow on a 16-bit DEM, sward quality image region 3.60 -> 3.17
-    // the floor, the flat scenes' dense grass covers either way.)
-    vec3 to_eye = normalize(u_eye - v_world);
-    float sin_w = max(to_eye.y, 0.02);
-    float upright = u_side_to_top * sqrt(1.0 - sin_w * sin_w);
-    float k = max(ground_up.y, 0.05) / sin_up * (sin_w + upright);
-    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) * k, min(k, 1.0)));
+    // The blades stand upright whatever the slope: how many a ray meets goes by the smaller of its
+    // elevation over the ground and over the horizon.
+    float sin_cover = min(sin_up, max(normalize(u_eye - v_world).y, 0.02));
+    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_cover, 1.0));
     // how level the view meets this grass's canopy (0 from above, or where it lies on another)
     float level = (1.0 - sin_up) * (1.0 - under);
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
@@ -110,6 +102,7 @@ void main() {
     // part of the patch's average normal and light hundreds of cells a few per cent brighter
     // or darker than their neighbours, a checkerboard nobody would see in the blades themselves.
     vec3 n = slice_normal(data);  // turned up, as the mean normal
+    vec3 to_eye = normalize(u_eye - v_world);
     // Seen from above, the top view shows between the tips the blades' lower, darker parts, which
     // a level view does not reach: towards the horizon the colour turns to what a view from that
     // elevation meets of the vertical slices (core/canopy.py), where the grass is the ground's.

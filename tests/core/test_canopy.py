@@ -1,9 +1,8 @@
 """What a view at a low elevation meets of the grass (core/canopy.py)."""
 
 import numpy as np
-import pytest
 
-from core.canopy import elevations, level_view, side_to_top
+from core.canopy import elevations, level_view
 
 
 def slices(rows_rgba):
@@ -33,22 +32,3 @@ def test_the_flatter_the_view_the_more_of_the_upper_rows_it_meets():
     red = colours[:, 0]
     assert np.all(np.diff(red) < 0)  # elevations rise: less and less of the top
     assert red[0] > 0.9 and red[-1] < 0.7
-
-
-def test_side_to_top_is_the_level_depth_over_the_top_views():
-    """Slices of uniform alpha a over every row, n of them per family: a level ray across one
-    patch meets σ = −n ln(1 − a) per unit height, over the layer's height h; the top view of
-    mean alpha t has depth −ln(1 − t). Denser sides, or a sparser top view, raise the ratio."""
-    n, rows, w, h = 4, 16, 8, 0.5
-    side = np.zeros((n, rows, w, 4), np.float32)
-    side[..., 3] = 0.2
-    top = np.zeros((32, 32, 4), np.float32)
-    top[..., 3] = 0.5
-    expected = -n * np.log(1 - 0.2) * h / -np.log(1 - 0.5)
-    assert side_to_top([side, side], top, h) == pytest.approx(expected, rel=1e-4)
-    denser = side.copy()
-    denser[..., 3] = 0.4
-    assert side_to_top([denser, denser], top, h) > side_to_top([side, side], top, h)
-    sparser_top = top.copy()
-    sparser_top[..., 3] = 0.3
-    assert side_to_top([side, side], sparser_top, h) > side_to_top([side, side], top, h)
