@@ -122,7 +122,7 @@ void gather(vec4 c, float ao, float l, vec2 xz) {
 
 // The horizontal slice as a layer of the volume at height u_floor (render/volume.py): colour,
 // alpha, AO and diffuse factor where the ray crosses it.
-vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
+vec4 horizontal(vec3 g, float lod, float facing, out vec2 ao_l) {
     vec2 p = v_mirror * g.xz;
     vec2 uv = vec2(p.x, 1.0 - p.y);
     float top_lod = max(lod + u_top_lod_offset, 0.0);  // explicit: no derivatives in the loop
@@ -136,7 +136,7 @@ vec4 horizontal(vec3 g, vec3 d, float lod, out vec2 ao_l) {
     // normal, turned up and made unit length, faced the sky and lit the steep views near the
     // eye 15/255 brighter than the blades (scripts/representation_bands.py --sun-view, meadow
     // path).
-    ao_l = vec2(ao_blade(u_floor, density), facing_lambert(-d));
+    ao_l = vec2(ao_blade(u_floor, density), facing);
     return c;
 }
 
@@ -174,6 +174,7 @@ void main() {
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
     float side_spread = level_value(u_side_spread, lod);
+    float facing = facing_lambert(-d);  // the blades' mean diffuse factor seen along the ray
     float crossing_x = 1.0 / max(abs(d.x), 0.25);
     float crossing_z = 1.0 / max(abs(d.z), 0.25);
     float depth_lambda = -1.0;
@@ -190,7 +191,7 @@ void main() {
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
         if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun)))
-            floor_sample = horizontal(floor_at, d, lod, floor_ao_l);
+            floor_sample = horizontal(floor_at, lod, facing, floor_ao_l);
     }
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
@@ -245,7 +246,7 @@ void main() {
             // of the family's mean normal.
             float len = length(n);
             float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
-            float l = mix(lambert_through(n / max(len, 1e-4)), facing_lambert(-d), k);
+            float l = mix(lambert_through(n / max(len, 1e-4)), facing, k);
             gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;
             if (g_alpha > u_opaque) break;
