@@ -63,5 +63,19 @@ def draw_list(
         grouped.setdefault(level.key, []).append(part)
     out = DrawList()
     for key, chunks in grouped.items():
-        out.batches[key] = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
+        cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
+        out.batches[key] = back_to_front(cells, eye) if key[0] == "volume" else cells
     return out
+
+
+def back_to_front(cells: np.ndarray, eye) -> np.ndarray:
+    """Volume cells ordered farthest first (by their centres' distance from the eye in xz).
+    A volume fragment blends its partly covered grass over what is drawn already, and writes
+    the depth of where its ray became opaque, or, faint, of how far it got: a cuboid behind
+    drawn after it failed the depth test there and let the soil show through (the cracks at
+    the meadow default camera, scripts/ground_holes.py)."""
+    if cells.size < 2:
+        return cells
+    centre = cells["origin"] + 0.5 * cells["size"]
+    d2 = (centre[:, 0] - eye[0]) ** 2 + (centre[:, 1] - eye[2]) ** 2
+    return cells[np.argsort(-d2, kind="stable")]

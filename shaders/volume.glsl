@@ -178,6 +178,7 @@ void main() {
     float crossing_x = 1.0 / max(abs(d.x), 0.25);
     float crossing_z = 1.0 / max(abs(d.z), 0.25);
     float depth_lambda = -1.0;
+    float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
     // on uneven ground the plane follows the ground where the ray enters
     float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
@@ -214,6 +215,7 @@ void main() {
         float y = h.y - (gd.x - v_ground.x);
         // under the ground the ray is hidden by the ground drawn before: nothing after counts
         if (y < 0.0) break;
+        reached = lambda;
         if (y > u_height) {
             if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
             continue;
@@ -262,7 +264,13 @@ void main() {
     vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color(duv), design_ambient(duv),
                            design_diffuse(duv));
     color = technique(color / g_alpha) * g_alpha;  // the technique view of the mean colour
-    if (depth_lambda < 0.0) depth_lambda = 0.0;
+    // A ray that never became half opaque writes the depth of the farthest point it reached
+    // above the ground, not that of its entry: it ran out of steps, or left its cuboid (and the
+    // cell it may run on into) with the grass beyond still to come, which the neighbouring
+    // cuboids draw. Written at the entry, its faint fragment hid their fragments behind it from
+    // the depth test and let the ground show through (the cracks at the meadow default camera:
+    // scripts/ground_holes.py).
+    if (depth_lambda < 0.0) depth_lambda = reached;
     vec3 world = e + depth_lambda * d + base;
     vec4 clip = u_view_proj * vec4(world, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;

@@ -63,3 +63,16 @@ def test_without_a_terrain_a_fixed_set_of_cells_is_split_by_distance():
     total = sum(drawn.counts().values())
     assert total >= instances.size  # every cell at least once, in transitions twice
     assert set(drawn.batches) == {("geometry", 0), ("volume", 8), ("image", 0)}
+
+
+def test_volume_cells_are_drawn_farthest_first():
+    """A volume fragment blends over what is drawn and writes depth: the cells behind must be
+    drawn before it (shaders/volume.glsl, core/draw_list.py: back_to_front)."""
+    meadow = get_scene("meadow").document()
+    eye = meadow.camera("default").eye
+    drawn = draw_list("lod", meadow.lod(0), eye, meadow.terrain, None, None, 8)
+    volume = drawn.batches[("volume", 8)]
+    assert volume.size > 10
+    centre = volume["origin"] + 0.5 * volume["size"]
+    distance = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
+    assert np.all(np.diff(distance) <= 1e-6)
