@@ -14,6 +14,8 @@ of the rows above. The table holds, per elevation, Σ w c / Σ w: the colour met
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 ELEVATIONS = 8  # table entries: θ_j = 90° · ((j + 0.5) / 8)², dense near the horizon
@@ -24,24 +26,84 @@ def elevations(count: int = ELEVATIONS) -> np.ndarray:
     return 0.5 * np.pi * ((np.arange(count) + 0.5) / count) ** 2
 
 
+def _profile(color: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Of one family of vertical slices ((n, rows, w, 4), rows running upward): the extinction
+    per patch length σ(y) and the alpha-weighted colour c(y) of each row."""
+    a = color[..., 3]
+    alpha = np.clip(a.mean(axis=2), 0.0, 1.0)  # (n, rows)
+    through = 1.0 - np.prod(1.0 - alpha, axis=0)  # (rows,)
+    sigma = -np.log(np.maximum(1.0 - through, 1e-6))  # per patch length
+    n, rows, w = a.shape
+    # per row, the colour weighted by alpha (one batched product over the columns)
+    sums = np.matmul(a.reshape(n * rows, 1, w), color[..., :3].reshape(n * rows, w, 3))
+    c = sums.reshape(n, rows, 3).sum(axis=0) / np.maximum(a.sum(axis=(0, 2)), 1e-9)[:, None]
+    return sigma, c
+
+
+def _met(sigma: np.ndarray, c: np.ndarray, dy: float, theta: float, rows: slice = slice(None)):
+    """A ray entering the rows `rows` (counted from the top down) from above at elevation θ: the
+    share of it they stop, and the colour they show it."""
+    tau = (sigma[::-1] * dy / max(np.tan(theta), 1e-3))[rows]  # the rows from the top down
+    w = np.exp(-np.concatenate([[0.0], np.cumsum(tau)[:-1]])) * (1.0 - np.exp(-tau))
+    colour = (w[:, None] * c[::-1][rows]).sum(axis=0) / max(float(w.sum()), 1e-9)
+    return 1.0 - float(np.exp(-tau.sum())), colour
+
+
 def level_view(families: list[np.ndarray], height: float, count: int = ELEVATIONS) -> np.ndarray:
     """(count, 3) colours met at each table elevation, averaged over the families of vertical
     slices ((n, rows, w, 4) colour + alpha arrays, 0 … 1, rows running upward)."""
     colours = []
     for color in families:
-        a = color[..., 3]
-        alpha = np.clip(a.mean(axis=2), 0.0, 1.0)  # (n, rows)
-        through = 1.0 - np.prod(1.0 - alpha, axis=0)  # (rows,)
-        sigma = -np.log(np.maximum(1.0 - through, 1e-6))  # per patch length
-        n, rows, w = a.shape
-        # per row, the colour weighted by alpha (one batched product over the columns)
-        sums = np.matmul(a.reshape(n * rows, 1, w), color[..., :3].reshape(n * rows, w, 3))
-        c = sums.reshape(n, rows, 3).sum(axis=0) / np.maximum(a.sum(axis=(0, 2)), 1e-9)[:, None]
-        dy = height / rows
-        met = []
-        for theta in elevations(count):
-            tau = sigma[::-1] * dy / max(np.tan(theta), 1e-3)  # the rows from the top down
-            w = np.exp(-np.concatenate([[0.0], np.cumsum(tau)[:-1]])) * (1.0 - np.exp(-tau))
-            met.append((w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9))
-        colours.append(met)
+        sigma, c = _profile(color)
+        dy = height / color.shape[1]
+        colours.append([_met(sigma, c, dy, theta)[1] for theta in elevations(count)])
     return np.mean(colours, axis=0).astype(np.float32)
+
+
+@dataclass(frozen=True)
+class Canopy:
+    """The rows' extinction and colour of each family of a patch's vertical slices (what the
+    tables here are computed from), kept small enough to keep beside the slices' textures."""
+
+    profiles: tuple[tuple[np.ndarray, np.ndarray], ...]  # per family: σ (rows,), c (rows, 3)
+    height: float
+
+    @classmethod
+    def of(cls, families: list[np.ndarray], height: float) -> Canopy:
+        return cls(tuple(_profile(color) for color in families), float(height))
+
+    def sigma_at(self, y: np.ndarray) -> np.ndarray:
+        """Extinction per patch length at heights y (world units), the families' mean; 0 above
+        the grass."""
+        sigma = np.mean([profile[0] for profile in self.profiles], axis=0)
+        rows = np.floor(np.asarray(y) / self.height * len(sigma)).astype(np.int64)
+        inside = (rows >= 0) & (rows < len(sigma))
+        return np.where(inside, sigma[np.clip(rows, 0, len(sigma) - 1)], 0.0)
+
+    def over(self, under: Canopy, count: int = ELEVATIONS) -> tuple[np.ndarray, np.ndarray]:
+        """Of this grass standing in another type's (`under`, the shorter): per table
+        elevation, the share of a ray these blades stop before anything else does, the other
+        type's blades standing among them where both reach, and the colour they show it
+        ((count,), (count, 3)). What the other type stops, or nothing, the other type's
+        slice beneath draws."""
+        shares, colours = [], []
+        for sigma, c in self.profiles:
+            rows = len(sigma)
+            dy = self.height / rows
+            y = (np.arange(rows)[::-1] + 0.5) * dy  # the rows from the top down
+            own, other = sigma[::-1], under.sigma_at(y)
+            share, colour = [], []
+            for theta in elevations(count):
+                t_own = own * dy / max(np.tan(theta), 1e-3)
+                t_all = t_own + other * dy / max(np.tan(theta), 1e-3)
+                stopped = np.exp(-np.concatenate([[0.0], np.cumsum(t_all)[:-1]]))
+                stopped = stopped * (1.0 - np.exp(-t_all))
+                w = stopped * t_own / np.maximum(t_all, 1e-12)  # stopped by these blades
+                share.append(float(w.sum()))
+                colour.append((w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9))
+            shares.append(share)
+            colours.append(colour)
+        return (
+            np.mean(shares, axis=0).astype(np.float32),
+            np.mean(colours, axis=0).astype(np.float32),
+        )

@@ -413,11 +413,14 @@ class FramePipeline:
             (grass.image.layer_height(), grass.density_channel) for grass in self.grass_types
         ]
         for grass, (own, _) in zip(self.grass_types, heights, strict=True):
-            grass.image.under_channels = tuple(
-                channel
-                for height, channel in heights
+            under = [
+                other
+                for other, (height, _) in zip(self.grass_types, heights, strict=True)
                 if own is not None and height is not None and height < own
-            )
+            ]
+            grass.image.under_channels = tuple(other.density_channel for other in under)
+            tallest = max(under, key=lambda other: other.image.textures.height, default=None)
+            grass.image.under = tallest.image.textures.canopy if tallest is not None else None
 
     def release(self) -> None:
         for grass in self.grass_types:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
+from core.canopy import Canopy
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable
 from render.ground import grid_mesh
@@ -85,6 +86,26 @@ class ImageRenderer:
             None  # set by the grass type (render/grass_type.py)  # shared with the volume renderer
         )
         self.density = 1.0
+        # the types whose grass lies beneath this one's (render/frame.py), and how high the
+        # tallest of them reaches
+        self.under_channels: tuple[int, ...] = ()
+        self.under: Canopy | None = None  # the tallest of those types' (core/canopy.py)
+        self._over: tuple[tuple, tuple[np.ndarray, np.ndarray]] | None = None  # over_table
+
+    def over_table(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per elevation of core/canopy.py's table, the exponent that turns the top view's
+        alpha into the share of a ray this grass stops above the grass beneath it, and the
+        colour it shows there (cached for the slices and the height beneath)."""
+        t = self.textures
+        assert t is not None
+        assert self.under is not None
+        key = (id(t.canopy), id(self.under))
+        if self._over is None or self._over[0] != key:
+            share, colours = t.canopy.over(self.under)
+            top = np.log(max(1.0 - t.top_alpha, 1e-4))
+            exponent = np.log(np.maximum(1.0 - share, 1e-4)) / min(top, -1e-4)
+            self._over = (key, (exponent.astype(np.float32), colours))
+        return self._over[1]
 
     def layer_height(self) -> float | None:
         """Height of the slice above the ground (None without slices)."""
@@ -113,6 +134,10 @@ class ImageRenderer:
         p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
         p["u_level_height"].value = (1.0 - 0.5 * CANOPY_ROWS) * float(self.textures.height)
+        if self.under_channels and self.under is not None:
+            exponent, colours = self.over_table()
+            p["u_over_exponent"].write(np.ascontiguousarray(exponent, np.float32))
+            p["u_over_colors"].write(np.ascontiguousarray(colours, np.float32))
         p["u_top_mean"].value = tuple(float(v) for v in self.textures.top.mean_color)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon

@@ -13,7 +13,7 @@ import moderngl
 import numba
 import numpy as np
 
-from core.canopy import level_view
+from core.canopy import Canopy, level_view
 from core.mipmaps import stacked_slice_mips, threshold_spread, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
@@ -127,17 +127,21 @@ class SliceLevels:
     top: LayerLevels
     height: float
     level_colors: np.ndarray  # (n, 3): what a view from each elevation meets (core/canopy.py)
+    canopy: Canopy  # the rows' extinction and colour, for views over another type's grass
+    top_alpha: float  # the top view's mean alpha at its base level: its cover from above
 
     @classmethod
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
         h = sliced.height
-        colors = level_view([sliced.x.color, sliced.z.color], h)
+        families = [sliced.x.color, sliced.z.color]
         return cls(
             layer_levels(sliced.x),
             layer_levels(sliced.z),
             layer_levels(sliced.top, top=True),
             h,
-            colors,
+            level_view(families, h),
+            Canopy.of(families, h),
+            float(np.clip(sliced.top.color[..., 3].mean(), 0.0, 1.0)),
         )
 
 
@@ -165,6 +169,8 @@ class SliceTextures:
     height: float
     slices: int  # per direction
     level_colors: np.ndarray  # SliceLevels
+    canopy: Canopy  # SliceLevels
+    top_alpha: float  # SliceLevels
 
     @classmethod
     def upload(cls, ctx: moderngl.Context, sliced: SlicedPatch) -> SliceTextures:
@@ -178,6 +184,8 @@ class SliceTextures:
             levels.height,
             levels.x.count,
             levels.level_colors,
+            levels.canopy,
+            levels.top_alpha,
         )
 
     def release(self) -> None:

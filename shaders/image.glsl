@@ -50,6 +50,11 @@ uniform vec4 u_under;          // 1 for each density channel whose grass lies be
 // what a view from each elevation of the table meets (core/canopy.py: θ_j = 90° ((j + ½) / 8)²):
 // colour and height; and the top view's mean colour
 uniform vec3 u_level_colors[8];
+// over another type's grass (u_under), per elevation of the same table (render/image.py,
+// core/canopy.py Canopy.over): the exponent that turns the top view's alpha into the share of
+// a ray these blades stop above the grass beneath, and the colour they show it
+uniform float u_over_exponent[8];
+uniform vec3 u_over_colors[8];
 uniform float u_level_height;  // where a level view meets the blades, for AO_blade (render/image.py)
 uniform vec3 u_top_mean;
 uniform float u_density;
@@ -89,9 +94,19 @@ void main() {
     // The blades stand upright whatever the slope: how many a ray meets goes by the smaller of its
     // elevation over the ground and over the horizon.
     float sin_cover = min(sin_up, max(normalize(u_eye - v_world).y, 0.02));
-    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), max((1.0 - under) / sin_cover, 1.0));
-    // how level the view meets this grass's canopy (0 from above, or where it lies on another)
-    float level = (1.0 - sin_up) * (1.0 - under);
+    // the table's row for this elevation over the ground (θ_j = 90° ((j + ½) / 8)²)
+    float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
+    int i = int(floor(row));
+    int j = min(i + 1, 7);
+    // Over another type's grass only the part of these blades above it stops a ray before it
+    // meets that grass: from above the top view's own coverage, towards the horizon what the
+    // vertical slices' rows above the other grass stop (a level view into the meadow's tall
+    // grass covered the short grass between its blades olive, where the blades show it).
+    float k_over = mix(1.0, mix(u_over_exponent[i], u_over_exponent[j], row - float(i)), 1.0 - sin_up);
+    float k = mix(max(1.0 / sin_cover, 1.0), k_over, under);
+    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), k);
+    // how level the view meets this grass's canopy (0 from above)
+    float level = 1.0 - sin_up;
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
     vec2 texels = uv * vec2(textureSize(u_top_color, 0));
     float lod = max(log2(max(length(dFdx(texels)), length(dFdy(texels)))), 0.0);
@@ -106,10 +121,8 @@ void main() {
     // Seen from above, the top view shows between the tips the blades' lower, darker parts, which
     // a level view does not reach: towards the horizon the colour turns to what a view from that
     // elevation meets of the vertical slices (core/canopy.py), where the grass is the ground's.
-    float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
-    int i = int(floor(row));
-    int j = min(i + 1, 7);
-    vec3 met = mix(u_level_colors[i], u_level_colors[j], row - float(i));
+    vec3 met = mix(mix(u_level_colors[i], u_level_colors[j], row - float(i)),
+                   mix(u_over_colors[i], u_over_colors[j], row - float(i)), under);
     vec3 tint = met / max(u_top_mean, vec3(1e-3));
     vec3 albedo = modulate(c.rgb * mix(vec3(1.0), tint, level), design_color(v_design));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as

@@ -32,3 +32,20 @@ def test_the_flatter_the_view_the_more_of_the_upper_rows_it_meets():
     red = colours[:, 0]
     assert np.all(np.diff(red) < 0)  # elevations rise: less and less of the top
     assert red[0] > 0.9 and red[-1] < 0.7
+
+
+def test_in_another_grass_a_type_stops_a_ray_by_its_share_of_the_blades():
+    """Red rows over the whole height in a dense blue grass reaching half of it: a level ray
+    is stopped by the red rows above the blue grass, a steep one reaches the blue grass more
+    often; and with no grass beneath, the red stops every ray that anything stops."""
+    from core.canopy import Canopy
+
+    red = Canopy.of([slices([(1.0, 0.0, 0.0, 0.05)] * 8)], 1.0)
+    dense = Canopy.of([slices([(0.0, 0.0, 1.0, 0.9)] * 8)], 0.5)
+    share, colours = red.over(dense)
+    assert np.all(np.diff(share) < 0)  # elevations rise: shorter paths through the red rows
+    assert share[0] > 0.5 and share[-1] < 0.3
+    np.testing.assert_allclose(colours[:, 0], 1.0, atol=1e-3)  # only the red blades
+    empty = Canopy.of([slices([(0.0, 0.0, 1.0, 0.0)] * 8)], 0.5)
+    alone, _ = red.over(empty)
+    assert np.all(alone > share)
