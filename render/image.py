@@ -90,7 +90,9 @@ class ImageRenderer:
         # tallest of them reaches
         self.under_channels: tuple[int, ...] = ()
         self.under: Canopy | None = None  # the tallest of those types' (core/canopy.py)
-        self._over: tuple[tuple, tuple[np.ndarray, np.ndarray]] | None = None  # over_table
+        # over_table's last result and the two canopies it is of (held, so never mistaken for
+        # new ones that reuse their ids)
+        self._over: tuple[tuple[Canopy, Canopy], tuple[np.ndarray, np.ndarray]] | None = None
 
     def over_table(self) -> tuple[np.ndarray, np.ndarray]:
         """Per elevation of core/canopy.py's table, the exponent that turns the top view's
@@ -99,8 +101,8 @@ class ImageRenderer:
         t = self.textures
         assert t is not None
         assert self.under is not None
-        key = (id(t.canopy), id(self.under))
-        if self._over is None or self._over[0] != key:
+        key = (t.canopy, self.under)
+        if self._over is None or self._over[0][0] is not key[0] or self._over[0][1] is not key[1]:
             share, colours = t.canopy.over(self.under)
             top = np.log(max(1.0 - t.top_alpha, 1e-4))
             exponent = np.log(np.maximum(1.0 - share, 1e-4)) / min(top, -1e-4)
