@@ -40,13 +40,16 @@ def _profile(color: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return sigma, c
 
 
-def _met(sigma: np.ndarray, c: np.ndarray, dy: float, theta: float, rows: slice = slice(None)):
-    """A ray entering the rows `rows` (counted from the top down) from above at elevation θ: the
-    share of it they stop, and the colour they show it."""
-    tau = (sigma[::-1] * dy / max(np.tan(theta), 1e-3))[rows]  # the rows from the top down
-    w = np.exp(-np.concatenate([[0.0], np.cumsum(tau)[:-1]])) * (1.0 - np.exp(-tau))
-    colour = (w[:, None] * c[::-1][rows]).sum(axis=0) / max(float(w.sum()), 1e-9)
-    return 1.0 - float(np.exp(-tau.sum())), colour
+def _met(sigma, c, dy: float, theta: float, other=None) -> tuple[float, np.ndarray]:
+    """A ray entering the rows (σ, c per row, running upward) from above at elevation θ: the
+    share of it their blades stop, and the colour they show it. `other`: the extinction per
+    row of another type's blades standing among them, which stop the ray too and take their
+    own share of it."""
+    t_own = sigma[::-1] * dy / max(np.tan(theta), 1e-3)  # the rows from the top down
+    t_all = t_own if other is None else t_own + other[::-1] * dy / max(np.tan(theta), 1e-3)
+    stopped = np.exp(-np.concatenate([[0.0], np.cumsum(t_all)[:-1]])) * (1.0 - np.exp(-t_all))
+    w = stopped * t_own / np.maximum(t_all, 1e-12)  # of what a row stops, these blades' share
+    return float(w.sum()), (w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9)
 
 
 def level_view(families: list[np.ndarray], height: float, count: int = ELEVATIONS) -> np.ndarray:
@@ -88,21 +91,11 @@ class Canopy:
         slice beneath draws."""
         shares, colours = [], []
         for sigma, c in self.profiles:
-            rows = len(sigma)
-            dy = self.height / rows
-            y = (np.arange(rows)[::-1] + 0.5) * dy  # the rows from the top down
-            own, other = sigma[::-1], under.sigma_at(y)
-            share, colour = [], []
-            for theta in elevations(count):
-                t_own = own * dy / max(np.tan(theta), 1e-3)
-                t_all = t_own + other * dy / max(np.tan(theta), 1e-3)
-                stopped = np.exp(-np.concatenate([[0.0], np.cumsum(t_all)[:-1]]))
-                stopped = stopped * (1.0 - np.exp(-t_all))
-                w = stopped * t_own / np.maximum(t_all, 1e-12)  # stopped by these blades
-                share.append(float(w.sum()))
-                colour.append((w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9))
-            shares.append(share)
-            colours.append(colour)
+            dy = self.height / len(sigma)
+            other = under.sigma_at((np.arange(len(sigma)) + 0.5) * dy)  # rows running upward
+            met = [_met(sigma, c, dy, theta, other) for theta in elevations(count)]
+            shares.append([m[0] for m in met])
+            colours.append([m[1] for m in met])
         return (
             np.mean(shares, axis=0).astype(np.float32),
             np.mean(colours, axis=0).astype(np.float32),

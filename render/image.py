@@ -86,8 +86,7 @@ class ImageRenderer:
             None  # set by the grass type (render/grass_type.py)  # shared with the volume renderer
         )
         self.density = 1.0
-        # the types whose grass lies beneath this one's (render/frame.py), and how high the
-        # tallest of them reaches
+        # the types whose grass lies beneath this one's (render/frame.py)
         self.under_channels: tuple[int, ...] = ()
         self.under: Canopy | None = None  # the tallest of those types' (core/canopy.py)
         # over_table's last result and the two canopies it is of (held, so never mistaken for
@@ -97,7 +96,7 @@ class ImageRenderer:
     def over_table(self) -> tuple[np.ndarray, np.ndarray]:
         """Per elevation of core/canopy.py's table, the exponent that turns the top view's
         alpha into the share of a ray this grass stops above the grass beneath it, and the
-        colour it shows there (cached for the slices and the height beneath)."""
+        colour it shows there (cached for the two canopies)."""
         t = self.textures
         assert t is not None
         assert self.under is not None
