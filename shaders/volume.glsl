@@ -180,9 +180,17 @@ void main() {
     float depth_lambda = -1.0;
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
-    // on uneven ground the plane follows the ground where the ray enters
+    // on uneven ground the plane follows the ground: a few fixed-point steps from the ground
+    // where the ray enters to the ground where it crosses the layer (flat at the entry's
+    // ground, the layer hovered over downhill ground in a macro-cell and the ray met it too
+    // soon: a darker rectangle on the meadow's slopes; tests/render/test_displacement.py)
     float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
     float floor_lambda = (d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
+    for (int k = 0; k < 3 && floor_lambda < 1e29; ++k) {
+        vec3 q = e + floor_lambda * d;
+        floor_y = u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x;
+        floor_lambda = e.y > floor_y ? max((floor_y - e.y) / d.y, 0.0) : 1e30;
+    }
     // The horizontal slice's sample, shaded here once, before the loop, and composited when
     // the ray reaches it: inside the loop SIMD lanes meet it at different steps, and its
     // fetches and shading ran once for every step at which any lane of a group met it
