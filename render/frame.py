@@ -394,7 +394,7 @@ class FramePipeline:
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
         order = {"geometry": 0, "image": 1, "volume": 2}
-        self._stack_image_layers()
+        self._stack_layers()
         passes = [(key, item) for batches in drawn for key, item in batches.items()]
         for (representation, _), (renderer, count) in sorted(
             passes, key=lambda p: (order[p[0][0]], -p[0][1])
@@ -407,8 +407,12 @@ class FramePipeline:
                 setattr(stats, key, getattr(stats, key) + elapsed)
         self.overlay.draw(frame)
 
-    def _stack_image_layers(self) -> None:
-        """Tell each type's image-based renderer which types' slices lie below its own."""
+    def _stack_layers(self) -> None:
+        """Tell each type's image-based renderer which types' slices lie below its own, and
+        drop the horizontal layer from the volume of a type that stands over another: it held
+        the taller type's top view and covered the shorter grass beneath (meadow default,
+        tall grass alone drawn white: the LOD frame covered 80 % of a clump the blades cover
+        61 % of, 68 % without the layer)."""
         heights = [
             (grass.image.layer_height(), grass.density_channel) for grass in self.grass_types
         ]
@@ -421,6 +425,8 @@ class FramePipeline:
             grass.image.under_channels = tuple(other.density_channel for other in under)
             tallest = max(under, key=lambda other: other.image.textures.height, default=None)
             grass.image.under = tallest.image.textures.canopy if tallest is not None else None
+            for volume in grass.volumes.values():
+                volume.floor = None if under else VolumeRenderer.floor
 
     def release(self) -> None:
         for grass in self.grass_types:

@@ -36,7 +36,9 @@ class VolumeRenderer(InstancedRenderer):
     # The horizontal slice is a layer of the volume at this fraction of the grass height: rays
     # from above meet it where, among vertical slices alone, they would fall between them
     # down to the roots and look too dark (steep views; thesis 5.2 has vertical slices only).
-    floor = 0.5
+    # None: no layer, for a grass type standing over a shorter one (render/frame.py), whose
+    # own volume is what such a ray meets below.
+    floor: float | None = 0.5
     overrun = 1.0  # cells a ray may continue past its own cuboid (see shaders/volume.glsl)
 
     def __init__(self, ctx: moderngl.Context) -> None:
@@ -87,7 +89,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_overrun"].value = self.overrun
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
-        p["u_floor"].value = self.floor * float(t.height)
+        p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)
         p["u_skip_steps"].value = self.skip_steps
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
         # how short averaging makes a normal at most (shaders/volume.glsl blends by it)

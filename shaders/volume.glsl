@@ -67,7 +67,7 @@ uniform float u_side_spread[SPREAD_LEVELS];  // thresholds' spread under a texel
 uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_side_mean_length;  // length of the vertical slices' mean normal (smallest level)
-uniform float u_floor;         // height of the horizontal slice inside the volume
+uniform float u_floor;         // height of the horizontal slice inside the volume (< 0: none)
 uniform int u_skip_steps;      // coarse steps over the height map before the slices
 // the height map and this grass type's density in one texture (render/design_maps.py): the ray
 // reads both at every step with one fetch; the same texels as u_design's height and density
@@ -179,13 +179,14 @@ void main() {
     float crossing_z = 1.0 / max(abs(d.z), 0.25);
     float depth_lambda = -1.0;
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
-    // where the ray crosses the horizontal slice's plane (never, if it starts below or rises);
+    // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
+    // or if there is none: u_floor < 0);
     // on uneven ground the plane follows the ground: a few fixed-point steps from the ground
     // where the ray enters to the ground where it crosses the layer (flat at the entry's
     // ground, the layer hovered over downhill ground in a macro-cell and the ray met it too
     // soon: a darker rectangle on the meadow's slopes; tests/render/test_displacement.py)
     float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
-    float floor_lambda = (d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
+    float floor_lambda = (u_floor >= 0.0 && d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
     for (int k = 0; k < 3 && floor_lambda < 1e29; ++k) {
         vec3 q = e + floor_lambda * d;
         floor_y = u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x;
