@@ -130,13 +130,15 @@ vec4 horizontal(vec3 g, float lod, float facing, out vec2 ao_l) {
     vec4 data = textureLod(u_top_data, uv, top_lod);
     float density = u_density * v_density * ground_density(design_uv(v_config, g.xz)).y;
     c.a *= lod_share(data.a, level_value(u_top_spread, top_lod), density, v_lod);
-    // AO_blade at the layer's own height (at the top view's 0.7 of the grass, the layer lit the
-    // steep views it catches brighter than the blades there). Its texels hold many blades each:
+    // The layer stands for the blades below it: AO_blade at their mean height, half the
+    // layer's (at the layer's own height the DEM's slopes facing the eye, whose rays it
+    // catches since it follows the ground, were drawn brighter than the blades: sward quality
+    // in README; at the top view's 0.7 of the grass, brighter still). Its texels hold many blades each:
     // lit by the blades' mean diffuse factor seen from the ray (the facing table). Its averaged
     // normal, turned up and made unit length, faced the sky and lit the steep views near the
     // eye 15/255 brighter than the blades (scripts/representation_bands.py --sun-view, meadow
     // path).
-    ao_l = vec2(ao_blade(u_floor, density), facing);
+    ao_l = vec2(ao_blade(0.5 * u_floor, density), facing);
     return c;
 }
 
@@ -181,16 +183,36 @@ void main() {
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
     // or if there is none: u_floor < 0);
-    // on uneven ground the plane follows the ground: a few fixed-point steps from the ground
-    // where the ray enters to the ground where it crosses the layer (flat at the entry's
-    // ground, the layer hovered over downhill ground in a macro-cell and the ray met it too
-    // soon: a darker rectangle on the meadow's slopes; tests/render/test_displacement.py)
+    // On uneven ground the layer follows the ground: the ray's height over it, h(λ), is
+    // positive where the ray enters, and the layer lies at its first zero. Rising ground
+    // meets the layer before the flat plane at the entry's ground would: a march of a few
+    // steps towards that plane looks for a point below; falling ground meets it beyond: steps
+    // to where the plane would be at the ground reached; once a point lies below, regula falsi
+    // between it and the last point above. Flat at the entry's ground, the layer hovered over
+    // downhill ground in a macro-cell and the ray met it too soon (a darker rectangle on the
+    // meadow's slopes), and lay under uphill ground, where the soil showed in diamonds between
+    // the slices (the DEM; tests/render/test_displacement.py). A search from the flat plane
+    // alone jumped past hill crests to the ground beyond them.
     float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
     float floor_lambda = (u_floor >= 0.0 && d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
-    for (int k = 0; k < 3 && floor_lambda < 1e29; ++k) {
-        vec3 q = e + floor_lambda * d;
-        floor_y = u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x;
-        floor_lambda = e.y > floor_y ? max((floor_y - e.y) / d.y, 0.0) : 1e30;
+    if (floor_lambda < 1e29) {
+        float a = 0.0, ha = e.y - floor_y, b = floor_lambda, hb = -1.0;
+        bool below = false;
+        for (int k = 0; k < 5; ++k) {
+            float x = below ? a + (b - a) * ha / (ha - hb)
+                    : (k < 2 ? floor_lambda * float(k + 1) / 2.0 : a - ha / d.y);
+            vec3 q = e + x * d;
+            float hx = q.y - (u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x);
+            if (hx > 0.0) {
+                a = x;
+                ha = hx;
+            } else {
+                b = x;
+                hb = hx;
+                below = true;
+            }
+        }
+        floor_lambda = below ? a + (b - a) * ha / (ha - hb) : a - ha / d.y;
     }
     // The horizontal slice's sample, shaded here once, before the loop, and composited when
     // the ray reaches it: inside the loop SIMD lanes meet it at different steps, and its
