@@ -2,11 +2,12 @@
 `--only`) drawn with the soil under the grass magenta, and for the magenta pixels the world
 points where their rays meet the terrain and those points' distances from the eye.
 
-    .venv/bin/python scripts/ground_holes.py [--scene meadow] [--camera default]
-        [--size 1024x768] [--only geometry|volume|image] [--window X0,Y0,X1,Y1]
+    .venv/bin/python scripts/ground_holes.py [--scene meadow | --project FILE]
+        [--camera default] [--size 1024x768] [--only geometry|volume|image]
+        [--window X0,Y0,X1,Y1]
 
-Prints JSON: the number of magenta pixels in the window, and up to 60 of their ground points
-(x, z) with their distances."""
+Prints JSON: the number of magenta pixels in the window and their share of it, and up to 60
+of their ground points (x, z) with their distances."""
 
 from __future__ import annotations
 
@@ -28,6 +29,7 @@ def main() -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scene", default="meadow")
+    ap.add_argument("--project", default=None, help="a project file instead of --scene")
     ap.add_argument("--camera", default="default")
     ap.add_argument("--size", default="1024x768")
     ap.add_argument("--only", default="lod", help="geometry, volume or image (default: LOD)")
@@ -35,7 +37,12 @@ def main() -> None:
     args = ap.parse_args()
     w, h = (int(v) for v in args.size.split("x"))
     x0, y0, x1, y1 = (int(v) for v in args.window.split(",")) if args.window else (0, 0, w, h)
-    document = get_scene(args.scene).document()
+    if args.project is not None:
+        from core.project_file import load_project
+
+        document = load_project(args.project)
+    else:
+        document = get_scene(args.scene).document()
     camera = document.camera(args.camera)
     with HeadlessRenderer(document, standalone(), mode=args.only) as renderer:
         renderer.pipeline.ground.under_grass = (1.0, 0.0, 1.0)
@@ -51,7 +58,8 @@ def main() -> None:
         if hit is not None:
             distance = float(np.hypot(hit[0] - camera.eye[0], hit[2] - camera.eye[2]))
             points.append([round(float(hit[0]), 2), round(float(hit[2]), 2), round(distance, 1)])
-    print(json.dumps({"pixels": int(magenta.sum()), "points_x_z_distance": points}))
+    share = round(float(magenta.mean()), 4)
+    print(json.dumps({"pixels": int(magenta.sum()), "share": share, "points_x_z_distance": points}))
 
 
 if __name__ == "__main__":
