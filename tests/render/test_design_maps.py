@@ -110,8 +110,10 @@ def test_mirror_bits_change_the_pixels_but_not_the_statistics(headless, only):
     tiled, _ = headless(document(mirror_seed=11), mode=only).render(camera, SIZE)
     mask_p = np.abs(plain.astype(int) - bare.astype(int)).max(axis=-1) > 10
     mask_t = np.abs(tiled.astype(int) - bare.astype(int)).max(axis=-1) > 10
-    changed = np.abs(plain.astype(int) - tiled.astype(int)).max(axis=-1) > 24
-    assert changed[mask_p].mean() > 0.1  # a tenth of the grass pixels changed clearly
+    changed = np.abs(plain.astype(int) - tiled.astype(int)).max(axis=-1) > 16
+    # a tenth of the grass pixels changed clearly (the volume: 0.19 by more than 16/255, 0.08
+    # by more than 24 since its slices' opacity per crossing no longer differs by family)
+    assert changed[mask_p].mean() > 0.1
     assert mask_t.mean() == pytest.approx(mask_p.mean(), abs=0.02)  # the same coverage
     mean_p = plain[mask_p].mean(axis=0)
     mean_t = tiled[mask_t].mean(axis=0)
