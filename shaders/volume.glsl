@@ -133,11 +133,11 @@ vec4 horizontal(vec3 g, float lod, float facing, out vec2 ao_l) {
     // The layer stands for the blades below it: AO_blade at their mean height, half the
     // layer's (at the layer's own height the DEM's slopes facing the eye, whose rays it
     // catches since it follows the ground, were drawn brighter than the blades: sward quality
-    // in README; at the top view's 0.7 of the grass, brighter still). Its texels hold many blades each:
-    // lit by the blades' mean diffuse factor seen from the ray (the facing table). Its averaged
-    // normal, turned up and made unit length, faced the sky and lit the steep views near the
-    // eye 15/255 brighter than the blades (scripts/representation_bands.py --sun-view, meadow
-    // path).
+    // in README; at the top view's 0.7 of the grass, brighter still). Its texels hold many
+    // blades each: lit by the blades' mean diffuse factor seen from the ray (the facing
+    // table). Its averaged normal, turned up and made unit length, faced the sky and lit the
+    // steep views near the eye 15/255 brighter than the blades
+    // (scripts/representation_bands.py --sun-view, meadow path).
     ao_l = vec2(ao_blade(0.5 * u_floor, density), facing);
     return c;
 }
