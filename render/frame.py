@@ -37,6 +37,7 @@ from render.overlay import OverlayRenderer
 from render.present import PREVIEW_SCALE, Presenter, opaque_alpha, release_fbo
 from render.props import PropRenderer
 from render.slices import SliceTextures
+from render.tiling import TilingNoise
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
 
@@ -75,6 +76,7 @@ class FramePipeline:
         self.map_textures.maps.changed.connect(self._on_map_changed)
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
+        self.tiling = TilingNoise(ctx)  # the terrain's mirror bits per cell, for macro-cells
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
         self.present = Presenter(ctx)
@@ -207,6 +209,7 @@ class FramePipeline:
         instances, of which a frame draws a few thousand)."""
         self._set_fixed(np.zeros(0, INSTANCE_DTYPE))
         self.terrain = terrain
+        self.tiling.set_seed(terrain.mirror_seed)
         self.ground.grass_rect = terrain.rect
 
     def set_instances(self, instances: np.ndarray) -> None:
@@ -214,6 +217,7 @@ class FramePipeline:
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.terrain = None
+        self.tiling.set_seed(None)  # single cells: each instance carries its own bits
         self._set_fixed(instances)
         if instances.size:
             lo = instances["origin"]
@@ -330,6 +334,7 @@ class FramePipeline:
             viewport_height=h,
             fov_y=camera.fov_y,
             height_scale=self.terrain.height_scale if self.terrain is not None else 0.0,
+            tiling=self.tiling.seed is not None,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
@@ -375,6 +380,7 @@ class FramePipeline:
             return (time.perf_counter() - start) * 1000.0
 
         self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
+        self.tiling.use()
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         drawn = []
@@ -436,6 +442,7 @@ class FramePipeline:
         self.overlay.release()
         self.map_textures.maps.changed.disconnect(self._on_map_changed)
         self.map_textures.release()
+        self.tiling.release()
         if self._converter is not None:
             self._converter.release()
         for fbo in self._targets.values():

@@ -13,6 +13,7 @@ from core.lighting import Lighting
 DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
 # units of the height + density textures, one a density channel (DesignMapTextures.grounds)
 GROUND_UNIT = 8
+TILING_UNIT = 5  # the aperiodic tiling's noise map (render/tiling.py)
 
 
 @dataclass
@@ -26,6 +27,7 @@ class FrameUniforms:
     viewport_height: int = 1  # pixels, for the volume renderer's mip level
     fov_y: float = 50.0  # degrees
     height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
+    tiling: bool = False  # cells mirrored by the terrain's noise map (render/tiling.py)
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""
@@ -42,6 +44,8 @@ class FrameUniforms:
             "u_height_scale": float(self.height_scale),
             "u_technique_view": 1.0 if self.technique_view else 0.0,
             "u_technique_color": tuple(technique_color),
+            "u_tiling": 1.0 if self.tiling else 0.0,
+            "u_tiling_noise": TILING_UNIT,
         }
         for name, value in values.items():
             if name not in program:

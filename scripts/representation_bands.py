@@ -8,7 +8,7 @@ whole region.
     .venv/bin/python scripts/representation_bands.py [--scene bench] [--camera zones]
         [--size 480x270] [--band 15] [--only volume,image] [--height-view | --coverage-view
         | --sun-view]
-        [--blades N]
+        [--blades N] [--save PREFIX]
 
 With --height-view the blades are black at the root and white at the tip, lit by white ambient
 light alone without AO: a band's grey is the height along the blades that its pixels meet.
@@ -49,6 +49,7 @@ def main() -> None:
     ap.add_argument(
         "--blades", type=int, default=None, help="blades per patch instead of the scene's"
     )
+    ap.add_argument("--save", metavar="PREFIX", help="write each frame as PREFIX-MODE.png")
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
     scene = get_scene(args.scene)
@@ -73,7 +74,12 @@ def main() -> None:
             if white:
                 renderer.pipeline.ground.under_grass = (0.0, 0.0, 0.0)
             renderer.render(camera, size, measure=False)  # slices convert, shaders compile
-            images[mode] = renderer.render(camera, size, measure=False)[0].astype(np.float64)
+            image = renderer.render(camera, size, measure=False)[0]
+            if args.save:
+                from PIL import Image
+
+                Image.fromarray(image).save(f"{args.save}-{mode}.png")
+            images[mode] = image.astype(np.float64)
     reference = images.pop("geometry")
     sky = np.abs(reference - reference[0, 0]).sum(axis=-1) < 4  # the sky's colour
     bands = []

@@ -20,3 +20,18 @@ vec3 modulate(vec3 blade, vec4 map) { return mix(blade, map.rgb, map.a); }
 // Aperiodic tiling (thesis 6.3): a point in cell units mirrored into the patch by the cell's
 // symmetry vector s (eq. 6.6): floor(p) + fract(s · p).
 vec2 mirror_local(vec2 p, vec2 s) { return floor(p) + fract(s * p); }
+
+// The symmetry vector of the cell whose origin is `cell` (world, cell units): with the
+// terrain's noise map (u_tiling, render/tiling.py) that cell's own bits as core/tiling.py
+// mirror_sign gives them (eqs. 6.4-6.5), else the instance's `own`. A macro-cell covers many
+// cells and its instance carries its first cell's bits; each cell's blades are mirrored by its
+// own, and a slice lookup mirrored by the first cell's showed another patch than the blades in
+// all but one cell in four (sward quality at bench zones, README).
+uniform sampler2D u_tiling_noise;
+uniform float u_tiling;
+vec2 cell_mirror(vec2 cell, vec2 own) {
+    if (u_tiling < 0.5) return own;
+    vec2 res = vec2(textureSize(u_tiling_noise, 0));
+    vec2 n = texelFetch(u_tiling_noise, ivec2(mod(floor(cell), res)), 0).rg;
+    return vec2(n.x >= 0.5 ? 1.0 : -1.0, n.y >= 0.5 ? 1.0 : -1.0);
+}

@@ -26,6 +26,7 @@ out vec2 v_design;             // design-map uv
 flat out float v_density;
 flat out vec2 v_lod;
 flat out vec2 v_mirror;
+flat out vec2 v_origin;
 
 void main() {
     v_patch = in_corner * in_size;
@@ -33,6 +34,7 @@ void main() {
     v_density = in_cell_density;
     v_lod = in_lod;
     v_mirror = in_mirror;
+    v_origin = in_origin;
     // the grid's vertices follow the ground (6.4.4; the thesis displaces the four corners)
     float ground = ground_height(v_design);
     vec3 world = vec3(in_origin.x + v_patch.x, u_lift + ground, in_origin.y + v_patch.y);
@@ -68,16 +70,20 @@ in vec2 v_design;
 flat in float v_density;
 flat in vec2 v_lod;
 flat in vec2 v_mirror;
+flat in vec2 v_origin;
 
 out vec4 f_color;
 
 void main() {
-    // mirrored: s · p, which the repeating texture wraps like fract (eq. 6.6) without a seam in
-    // the derivatives; the top view has v = 1 - z
-    vec2 p = v_mirror * v_patch;
+    // mirrored: s · p, which the repeating texture wraps like fract (eq. 6.6), by the bits of
+    // the cell the fragment lies in (a macro-cell covers many); the top view has v = 1 - z. The
+    // footprint comes from the unmirrored position: where s flips at a cell's edge, the
+    // mirrored one jumps and a 2 × 2 quad across the edge would read the smallest mip.
+    vec2 p = cell_mirror(v_origin + floor(v_patch), v_mirror) * v_patch;
     vec2 uv = vec2(p.x, 1.0 - p.y);
-    vec4 c = texture(u_top_color, uv);
-    vec4 data = texture(u_top_data, uv);
+    vec2 duv_x = dFdx(v_patch), duv_y = dFdy(v_patch);
+    vec4 c = textureGrad(u_top_color, uv, duv_x, duv_y);
+    vec4 data = textureGrad(u_top_data, uv, duv_x, duv_y);
     float density = u_density * v_density * design_density(v_design);
     // The top view's alpha is what covers the ground seen from straight above; a ray at
     // elevation θ crosses the grass layer over 1 / sin θ of its height and meets that many
@@ -108,8 +114,8 @@ void main() {
     // how level the view meets this grass's canopy (0 from above)
     float level = 1.0 - sin_up;
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
-    vec2 texels = uv * vec2(textureSize(u_top_color, 0));
-    float lod = max(log2(max(length(dFdx(texels)), length(dFdy(texels)))), 0.0);
+    vec2 size = vec2(textureSize(u_top_color, 0));
+    float lod = max(log2(max(length(duv_x * size), length(duv_y * size))), 0.0);
     // of the blades under the texel, the share kept; alpha-to-coverage draws that share
     c.a *= lod_share(data.a, level_value(u_top_spread, lod), density, v_lod);
     if (c.a < 0.02) discard;

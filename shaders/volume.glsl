@@ -123,7 +123,7 @@ void gather(vec4 c, float ao, float l, vec2 xz) {
 // The horizontal slice as a layer of the volume at height u_floor (render/volume.py): colour,
 // alpha, AO and diffuse factor where the ray crosses it.
 vec4 horizontal(vec3 g, float lod, float facing, out vec2 ao_l) {
-    vec2 p = v_mirror * g.xz;
+    vec2 p = cell_mirror(v_origin + floor(g.xz), v_mirror) * g.xz;
     vec2 uv = vec2(p.x, 1.0 - p.y);
     float top_lod = max(lod + u_top_lod_offset, 0.0);  // explicit: no derivatives in the loop
     vec4 c = textureLod(u_top_color, uv, top_lod);
@@ -234,6 +234,7 @@ void main() {
         if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun)))
             floor_sample = horizontal(floor_at, lod, facing, floor_ao_l);
     }
+    vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
         bool hit_x = w.x < w.y;
@@ -262,9 +263,15 @@ void main() {
         }
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
-        // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end
-        if ((hit_x ? v_mirror.x : v_mirror.y) < 0.0) slice = u_slices - 1.0 - slice;
-        float u = fract((hit_x ? v_mirror.y * h.z : v_mirror.x * h.x));
+        // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end (the bits of the
+        // cell the hit lies in: a macro-cell's, or the neighbour's a ray ran on into)
+        vec2 cell = floor(h.xz);
+        if (cell != mirror_cell) {  // a ray crosses N slices a cell: one fetch per cell
+            mirror_cell = cell;
+            s = cell_mirror(v_origin + cell, v_mirror);
+        }
+        if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
+        float u = fract((hit_x ? s.y * h.z : s.x * h.x));
         vec2 uv = atlas_uv(u, y / u_height, hit_x ? slice : u_slices + slice, rows, lod);
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
@@ -272,7 +279,7 @@ void main() {
         c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 1.0), crossing);  // opacity per crossing: above
         c.a *= lod_share(data.a, side_spread, density, v_lod);
         if (c.a > 0.003) {
-            vec3 n = slice_normal(data) * vec3(v_mirror.x, 1.0, v_mirror.y);
+            vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
             if (dot(n, -d) < 0.0) n = -n;
             // A texel's normal is the mean of its blades' (render/slices.py): of one blade near
             // the eye, of many far away, where the mean is short and lights them as one dull
