@@ -42,6 +42,11 @@ def _expand(name: str, seen: tuple[str, ...] = ()) -> list[str]:
     return out
 
 
+def snippet_source(name: str) -> str:
+    """A shared snippet (shaders/_NAME.glsl) with its includes expanded, for test programs."""
+    return "\n".join(_expand(name)) + "\n"
+
+
 def stage_source(name: str, stage: str) -> str:
     lines = _expand(name)
     if not lines or not lines[0].startswith("#version"):

@@ -9,7 +9,7 @@ import numpy as np
 
 from core.tiling import mirror_bits
 from render.context import release_framebuffer
-from render.shaders import _expand
+from render.shaders import snippet_source
 from render.tiling import TilingNoise
 from render.uniforms import TILING_UNIT
 
@@ -29,7 +29,7 @@ void main() {
 
 def _cell_mirrors(ctx, seed, first, size):
     """What cell_mirror gives for the size × size cells from `first` (x along columns)."""
-    source = "\n".join(["#version 330 core", *_expand("_design.glsl"), _MAIN])
+    source = "#version 330 core\n" + snippet_source("_design.glsl") + _MAIN
     program = ctx.program(vertex_shader=_VERTEX, fragment_shader=source)
     tiling = TilingNoise(ctx)
     tiling.set_seed(seed)
