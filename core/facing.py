@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from core.canopy import Canopy
+
 AZIMUTHS = 32  # table columns: azimuth of e, 0 = +z turning towards +x (as the sun's)
 ELEVATIONS = 8  # table rows: elevation of e, 0 … 90 degrees, texel centres
 SAMPLE = 20000  # at most this many normals are used (a patch has tens of thousands)
@@ -50,20 +52,29 @@ def facing_lambert(
     translucency: float,
     azimuths: int = AZIMUTHS,
     elevations: int = ELEVATIONS,
+    seen: tuple[np.ndarray, Canopy] | None = None,
 ) -> np.ndarray:
-    """(elevations, azimuths) float32: L(e) at each table direction (see the module)."""
+    """(elevations, azimuths) float32: L(e) at each table direction (see the module).
+    `seen`: the vertices' heights and the patch's canopy; each vertex then counts as far as a
+    view from e reaches its height through the blades above it (Canopy.transmittance)."""
     n = np.asarray(normals, np.float64).reshape(-1, 3)
     length = np.linalg.norm(n, axis=1)
-    n = n[length > 1e-6] / length[length > 1e-6, None]
+    keep = length > 1e-6
+    n = n[keep] / length[keep, None]
     if len(n) == 0:
         return np.zeros((elevations, azimuths), np.float32)
-    if len(n) > SAMPLE:
-        n = n[np.linspace(0, len(n) - 1, SAMPLE).astype(np.int64)]
+    pick = np.linspace(0, len(n) - 1, min(len(n), SAMPLE)).astype(np.int64)
+    n = n[pick]
     e = directions(azimuths, elevations).reshape(-1, 3)
     ne = n @ e.T  # (normals, directions)
     nl = n @ np.asarray(light_dir, np.float64)  # (normals,)
     facing_l = np.sign(ne) * nl[:, None]  # n_f · L
     lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
     w = np.abs(ne)
+    if seen is not None:
+        heights, canopy = seen
+        y = np.asarray(heights, np.float64).reshape(-1)[keep][pick]
+        theta = 0.5 * np.pi * (np.arange(elevations) + 0.5) / elevations
+        w = w * np.repeat(canopy.transmittance(y, theta), azimuths, axis=1)
     table = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
     return table.reshape(elevations, azimuths).astype(np.float32)

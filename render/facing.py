@@ -9,6 +9,7 @@ from collections.abc import Callable
 import moderngl
 import numpy as np
 
+from core.canopy import Canopy
 from core.facing import AZIMUTHS, ELEVATIONS, facing_lambert
 from core.lighting import Lighting
 from core.patch import GrassPatch
@@ -17,30 +18,47 @@ FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 
 
 class FacingTable:
-    def __init__(self, ctx: moderngl.Context, patch: Callable[[], GrassPatch | None]) -> None:
+    """`canopy`: where given, each blade vertex counts as far as a view reaches it through the
+    blades above (core/facing.py `seen`): what the image-based grass, one slice for the whole
+    canopy, must show; the volume's samples are occluded by the ray itself."""
+
+    def __init__(
+        self,
+        ctx: moderngl.Context,
+        patch: Callable[[], GrassPatch | None],
+        canopy: Callable[[], Canopy | None] | None = None,
+    ) -> None:
         self.ctx = ctx
         self._patch = patch
+        self._canopy = canopy
         self.texture = ctx.texture((AZIMUTHS, ELEVATIONS), 1, dtype="f4")
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = True  # azimuth wraps
         self.texture.repeat_y = False
         self._patch_used: GrassPatch | None = None  # the patch and light the table is of
         self._light_used: tuple | None = None
+        self._canopy_used: Canopy | None = None
 
     def table(self, lighting: Lighting) -> np.ndarray | None:
         patch = self._patch()
         if patch is None:
             return None
+        canopy = self._canopy() if self._canopy is not None else None
+        seen = None if canopy is None else (patch.vertices["position"][:, 1], canopy)
         return facing_lambert(
-            patch.vertices["normal"], lighting.sun_direction, lighting.translucency
+            patch.vertices["normal"], lighting.sun_direction, lighting.translucency, seen=seen
         )
 
     def use(self, lighting: Lighting, unit: int = FACING_UNIT) -> None:
         patch = self._patch()
         light = (*lighting.sun_direction, lighting.translucency)
-        if patch is not None and (patch is not self._patch_used or light != self._light_used):
+        canopy = self._canopy() if self._canopy is not None else None
+        if patch is not None and (
+            patch is not self._patch_used or light != self._light_used
+            or canopy is not self._canopy_used
+        ):  # fmt: skip
             self.texture.write(np.ascontiguousarray(self.table(lighting)).tobytes())
-            self._patch_used, self._light_used = patch, light
+            self._patch_used, self._light_used, self._canopy_used = patch, light, canopy
         self.texture.use(unit)
 
     def release(self) -> None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
+from core.canopy import Canopy
 from core.draw_list import DrawList
 from core.grid import INSTANCE_DTYPE
 from core.lod import LodConfig
@@ -49,7 +50,7 @@ class GrassTypeRenderer:
         self.image = ImageRenderer(ctx)
         # the blades' mean diffuse factor by view direction, which the image-based lights with
         self.facing = FacingTable(ctx, lambda: self.patch)
-        self.image.facing = self.facing
+        self.image.facing = FacingTable(ctx, lambda: self.patch, self._canopy)
         self.lod = LodConfig()
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
@@ -59,6 +60,10 @@ class GrassTypeRenderer:
 
     def _set_channel(self, renderer) -> None:
         renderer.density_channel = self.density_channel
+
+    def _canopy(self) -> Canopy | None:
+        t = self.image.textures
+        return None if t is None else t.canopy
 
     @property
     def patch(self) -> GrassPatch | None:
@@ -156,3 +161,5 @@ class GrassTypeRenderer:
             textures.release()
         self._slices = {}
         self.facing.release()
+        if self.image.facing is not None:
+            self.image.facing.release()

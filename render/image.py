@@ -17,14 +17,10 @@ from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 
 GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
-# Seen from above, grass shows mostly its upper parts: the slice's AO_blade (eq. 6.11) is taken
-# at this fraction of the grass height.
-TOP_HEIGHT = 0.7
-# A level view meets the tips: AO_blade (eq. 6.11) is taken at the middle of the grass's top
-# eighth there. (AO averaged over the heights core/canopy.py's table meets measured darker than
-# the blades: sward quality 480x270, bench zones image region 4.5 against 2.1 x the floor,
-# meadow default 2.7 against 2.4.)
-CANOPY_ROWS = 1 / 8
+# AO_blade (eq. 6.11) is that of the heights a view meets of the blades (core/canopy.py
+# Canopy.shade_met); taken at fixed heights (0.7 of the grass from above, its top eighth towards
+# the horizon) it lit the DEM's far hills 0.81 where the blades show 0.63 of the ambient light
+# (scripts/region_views.py).
 GRID = 6  # quads per side of the slice of a (macro-)cell on uneven ground
 
 
@@ -92,6 +88,7 @@ class ImageRenderer:
         # over_table's last result and the two canopies it is of (held, so never mistaken for
         # new ones that reuse their ids)
         self._over: tuple[tuple[Canopy, Canopy], tuple[np.ndarray, np.ndarray]] | None = None
+        self._shade: tuple[tuple, tuple[np.ndarray, np.ndarray]] | None = None
 
     def over_table(self) -> tuple[np.ndarray, np.ndarray]:
         """Per elevation of core/canopy.py's table, the exponent that turns the top view's
@@ -107,6 +104,20 @@ class ImageRenderer:
             exponent = np.log(np.maximum(1.0 - share, 1e-4)) / min(top, -1e-4)
             self._over = (key, (exponent.astype(np.float32), colours))
         return self._over[1]
+
+    def level_shade(self, ao_height: float) -> tuple[np.ndarray, np.ndarray]:
+        """core/canopy.py Canopy.shade_met for the light's B_height: this grass's own, and
+        standing in the grass beneath it (`under`; the own again without), cached."""
+        t = self.textures
+        assert t is not None
+        key = (t.canopy, self.under, float(ao_height))
+        held = self._shade
+        stale = held is None or held[0][2] != key[2]
+        if stale or any(x is not y for x, y in zip(held[0][:2], key[:2], strict=True)):
+            own = t.canopy.shade_met(ao_height)
+            over = own if self.under is None else t.canopy.shade_met(ao_height, self.under)
+            self._shade = held = (key, (own, over))
+        return held[1]
 
     def layer_height(self) -> float | None:
         """Height of the slice above the ground (None without slices)."""
@@ -132,9 +143,10 @@ class ImageRenderer:
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()
-        p["u_top_height"].value = TOP_HEIGHT * float(self.textures.height)
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
-        p["u_level_height"].value = (1.0 - 0.5 * CANOPY_ROWS) * float(self.textures.height)
+        own, over = self.level_shade(frame.lighting.blade_ao_height)
+        p["u_level_shade"].write(np.ascontiguousarray(own, np.float32))
+        p["u_over_shade"].write(np.ascontiguousarray(over, np.float32))
         if self.under_channels and self.under is not None:
             exponent, colours = self.over_table()
             p["u_over_exponent"].write(np.ascontiguousarray(exponent, np.float32))

@@ -57,11 +57,13 @@ uniform vec3 u_level_colors[8];
 // a ray these blades stop above the grass beneath, and the colour they show it
 uniform float u_over_exponent[8];
 uniform vec3 u_over_colors[8];
-uniform float u_level_height;  // where a level view meets the blades, for AO_blade (render/image.py)
+// per elevation of the same table, the mean of 1 − smoothstep(0, B_height, y) over the heights
+// y the view meets (core/canopy.py Canopy.shade_met): AO_blade of what it meets
+uniform float u_level_shade[8];
+uniform float u_over_shade[8];  // the same over another type's grass (u_under)
 uniform vec3 u_top_mean;
 uniform float u_density;
 uniform float u_alpha_ref;
-uniform float u_top_height;    // typical height of what the slice shows from above (AO_blade)
 uniform vec3 u_eye;
 
 in vec2 v_patch;
@@ -91,15 +93,18 @@ void main() {
     // where the grass reaches the ground. Above another type's grass (u_under: the density
     // channels of the types whose slices lie lower) a ray that passes between these blades
     // meets that grass instead: there the top view's own coverage holds.
-    // (elevation over the ground: on a slope the grass layer follows the ground, and a hillside
-    // that faces the eye is seen steeply however far away it is)
+    // (the elevation θ of the ray over the grass layer: upright blades on ground that rises
+    // towards the eye are crossed over a shorter run than on flat ground, and a ray descending
+    // at tan e over a rise of gradient g along it meets the ground after h / (tan e + g), so
+    // tan θ = tan e + g = (u · n) / (n_y |u_xz|) with n the ground's normal; the smaller of the
+    // elevations over the ground and over the horizon, taken before, covered the DEM's
+    // hillsides that face the eye 10 % more than the blades: scripts/region_views.py)
     vec3 ground_up = normalize(cross(dFdy(v_world), dFdx(v_world)));
     if (ground_up.y < 0.0) ground_up = -ground_up;
-    float sin_up = max(dot(normalize(u_eye - v_world), ground_up), 0.02);
+    vec3 u = normalize(u_eye - v_world);
+    float theta = atan(max(dot(u, ground_up), 0.0), max(ground_up.y * length(u.xz), 1e-4));
+    float sin_up = max(sin(theta), 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
-    // The blades stand upright whatever the slope: how many a ray meets goes by the smaller of its
-    // elevation over the ground and over the horizon.
-    float sin_cover = min(sin_up, max(normalize(u_eye - v_world).y, 0.02));
     // the table's row for this elevation over the ground (θ_j = 90° ((j + ½) / 8)²)
     float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
     int i = int(floor(row));
@@ -109,7 +114,7 @@ void main() {
     // vertical slices' rows above the other grass stop (a level view into the meadow's tall
     // grass covered the short grass between its blades olive, where the blades show it).
     float k_over = mix(1.0, mix(u_over_exponent[i], u_over_exponent[j], row - float(i)), 1.0 - sin_up);
-    float k = mix(max(1.0 / sin_cover, 1.0), k_over, under);
+    float k = mix(max(1.0 / sin_up, 1.0), k_over, under);
     c.a = 1.0 - pow(max(1.0 - c.a, 0.0), k);
     // how level the view meets this grass's canopy (0 from above)
     float level = 1.0 - sin_up;
@@ -135,9 +140,11 @@ void main() {
     // the slice's own normal varies about the patch's mean normal.
     float detail = lambert_through(n) / max(lambert_through(u_mean_normal), 0.05);
     float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0);
-    // AO_blade (eq. 6.11) where the view meets the blades
-    vec3 lit = shade_l(albedo, l, ao_blade(mix(u_top_height, u_level_height, level), density),
-                     design_ambient(v_design), design_diffuse(v_design));
+    // AO_blade (eq. 6.11) of what the view meets of the blades
+    float shade = mix(mix(u_level_shade[i], u_level_shade[j], row - float(i)),
+                      mix(u_over_shade[i], u_over_shade[j], row - float(i)), under);
+    float ao = 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * shade;
+    vec3 lit = shade_l(albedo, l, ao, design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(lit), c.a);
 }
 

@@ -49,3 +49,29 @@ def test_in_another_grass_a_type_stops_a_ray_by_its_share_of_the_blades():
     empty = Canopy.of([slices([(0.0, 0.0, 1.0, 0.0)] * 8)], 0.5)
     alone, _ = red.over(empty)
     assert np.all(alone > share)
+
+
+def test_a_view_reaches_the_lower_rows_less_the_flatter_it_is():
+    from core.canopy import Canopy
+
+    canopy = Canopy.of([slices([(0.0, 1.0, 0.0, 0.2)] * 8)], 1.0)
+    theta = elevations()
+    seen = canopy.transmittance(np.array([0.1, 0.5, 0.9, 1.5]), theta)
+    assert np.all(np.diff(seen, axis=0) > 0)  # higher rows are reached more
+    assert np.all(np.diff(seen[:3], axis=1) > 0)  # steeper views reach deeper
+    np.testing.assert_allclose(seen[3], 1.0)  # above the grass
+    assert seen[0, 0] < 0.01 and seen[0, -1] > 0.2
+
+
+def test_the_ao_a_view_meets_darkens_as_it_reaches_down():
+    """1 − smoothstep(0, B_height, y) over the heights met: near 0 for a level view into a
+    canopy whose top lies above B_height, more the steeper the view; another type's dense
+    grass standing among the blades takes the deep rays."""
+    from core.canopy import Canopy
+
+    canopy = Canopy.of([slices([(0.0, 1.0, 0.0, 0.2)] * 8)], 1.0)
+    shade = canopy.shade_met(0.5)
+    assert np.all(np.diff(shade) > 0)
+    assert shade[0] < 0.05 and shade[-1] > 0.2
+    dense = Canopy.of([slices([(0.0, 0.0, 1.0, 0.9)] * 8)], 0.5)
+    assert np.all(canopy.shade_met(0.5, dense)[2:] < shade[2:])

@@ -41,3 +41,24 @@ def test_upright_blades_seen_level_match_the_closed_form():
 
 def test_no_normals_no_light():
     assert not facing_lambert(np.zeros((4, 3)), np.array([0.0, 1.0, 0.0]), 0.3).any()
+
+
+def test_blades_hidden_below_the_canopy_count_less_the_flatter_the_view():
+    """Lower parts facing the sky, tips facing sideways, a sun overhead: seen through the
+    blades above them, a level view meets the tips alone, a steep one the lower parts too."""
+    from core.canopy import Canopy
+
+    light = np.array([0.0, 1.0, 0.0])
+    up, side = [0.0, 1.0, 0.0], [0.8, 0.0, 0.6]
+    normals = np.array([up] * 50 + [side] * 50)
+    heights = np.array([0.1] * 50 + [0.95] * 50)
+    stack = np.zeros((2, 8, 4, 4), np.float32)
+    stack[..., 3] = 0.3
+    canopy = Canopy.of([stack], 1.0)
+    plain = facing_lambert(normals, light, 0.0)
+    seen = facing_lambert(normals, light, 0.0, seen=(heights, canopy))
+    tips = facing_lambert(normals[50:], light, 0.0)  # 0: lit edge-on
+    assert plain[0].mean() > 0.05  # unoccluded, the lit lower parts count even seen level
+    assert seen[0].mean() < 0.2 * plain[0].mean()
+    np.testing.assert_allclose(seen[0], tips[0], atol=0.02)
+    assert seen[-1].mean() > 2.0 * seen[0].mean()
