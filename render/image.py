@@ -88,6 +88,7 @@ class ImageRenderer:
         # over_table's last result and the two canopies it is of (held, so never mistaken for
         # new ones that reuse their ids)
         self._over: tuple[tuple[Canopy, Canopy], tuple[np.ndarray, np.ndarray]] | None = None
+        # level_shade's last result and what it is of (held, as _over)
         self._shade: tuple[tuple, tuple[np.ndarray, np.ndarray]] | None = None
 
     def over_table(self) -> tuple[np.ndarray, np.ndarray]:
@@ -110,13 +111,17 @@ class ImageRenderer:
         standing in the grass beneath it (`under`; the own again without), cached."""
         t = self.textures
         assert t is not None
-        key = (t.canopy, self.under, float(ao_height))
         held = self._shade
-        stale = held is None or held[0][2] != key[2]
-        if stale or any(x is not y for x, y in zip(held[0][:2], key[:2], strict=True)):
-            own = t.canopy.shade_met(ao_height)
-            over = own if self.under is None else t.canopy.shade_met(ao_height, self.under)
-            self._shade = held = (key, (own, over))
+        canopy, under, b_height = t.canopy, self.under, float(ao_height)
+        if (
+            held is None
+            or held[0][0] is not canopy
+            or held[0][1] is not under
+            or held[0][2] != b_height
+        ):
+            own = canopy.shade_met(b_height)
+            over = own if under is None else canopy.shade_met(b_height, under)
+            held = self._shade = ((canopy, under, b_height), (own, over))
         return held[1]
 
     def layer_height(self) -> float | None:
