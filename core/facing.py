@@ -74,7 +74,7 @@ def facing_lambert(
     if seen is not None:
         heights, canopy = seen
         y = np.asarray(heights, np.float64).reshape(-1)[keep][pick]
-        theta = 0.5 * np.pi * (np.arange(elevations) + 0.5) / elevations
+        theta = np.arcsin(directions(1, elevations)[:, 0, 1])  # the rows' elevations
         w = w * np.repeat(canopy.transmittance(y, theta), azimuths, axis=1)
     table = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
     return table.reshape(elevations, azimuths).astype(np.float32)

@@ -48,7 +48,8 @@ class GrassTypeRenderer:
         self.geometry = GeometryRenderer(ctx)
         self.volumes: dict[int, VolumeRenderer] = {}  # one per slice count (thesis ch. 7)
         self.image = ImageRenderer(ctx)
-        # the blades' mean diffuse factor by view direction, which the image-based lights with
+        # the blades' mean diffuse factor by view direction: the volumes' (set below); the
+        # image-based grass has its own, of the blade parts a view reaches (render/facing.py)
         self.facing = FacingTable(ctx, lambda: self.patch)
         self.image.facing = FacingTable(ctx, lambda: self.patch, self._canopy)
         self.lod = LodConfig()

@@ -78,9 +78,7 @@ class ImageRenderer:
         self.uneven = _Batch(ctx, self.program, GRID)
         self.instance_count = 0
         self.textures: SliceTextures | None = None
-        self.facing: FacingTable | None = (
-            None  # set by the grass type (render/grass_type.py)  # shared with the volume renderer
-        )
+        self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
         self.density = 1.0
         # the types whose grass lies beneath this one's (render/frame.py)
         self.under_channels: tuple[int, ...] = ()
