@@ -1,0 +1,96 @@
+"""How bright a far representation lights one grass type against its blades, by view: the
+bench's cells with a project's grass type (white blades, black soil, no AO, no fog), flat or on
+a ramp rising away from -z, seen from a camera at a distance, elevation and azimuth around the
+grid's centre; each representation drawn for every cell (`--only`) under a sun-only view and an
+ambient-only view. Sun over ambient over the window is the diffuse factor the grass shows
+(core/facing.py's table for the image-based grass), coverage the share of the window covered.
+
+    .venv/bin/python scripts/facing_check.py PROJECT [--type 1] [--distance 20]
+        [--height-scale 0] [--elevations 5,10,20] [--azimuths 0,90,180,270]
+        [--modes geometry,image]
+
+Azimuth 0 puts the camera at -z looking towards +z (up the ramp). Prints one JSON line a view."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+WHITE, BLACK = (1.0, 1.0, 1.0), (0.0, 0.0, 0.0)
+SIZE = (320, 180)
+WINDOW = (slice(70, 110), slice(100, 220))
+CENTRE = 16.0  # the bench's 32 × 32 cells
+
+
+def main() -> None:
+    from app.scenes import CameraSpec, get_scene
+    from core.project_file import load_project
+    from render.context import standalone
+    from render.headless import HeadlessRenderer
+
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("project", type=Path)
+    ap.add_argument("--type", type=int, default=0)
+    ap.add_argument("--distance", type=float, default=20.0)
+    ap.add_argument("--height-scale", type=float, default=0.0)
+    ap.add_argument("--elevations", default="5,10,20")
+    ap.add_argument("--azimuths", default="0,90,180,270")
+    ap.add_argument("--modes", default="geometry,image")
+    args = ap.parse_args()
+    project = load_project(args.project)
+    params = project.params(args.type).replace(
+        root_color=WHITE, tip_color=WHITE, blade_color_variation=0.0
+    )
+    hs = args.height_scale
+
+    def ramp(width: int, height: int) -> np.ndarray:
+        return np.repeat(np.linspace(0.0, 1.0, height, dtype=np.float32)[:, None], width, axis=1)
+
+    scene = dataclasses.replace(get_scene("bench"), params=params, height_map=ramp, height_scale=hs)
+    ctx = standalone()
+    for elevation in (float(v) for v in args.elevations.split(",")):
+        for azimuth in (float(v) for v in args.azimuths.split(",")):
+            el, az = math.radians(elevation), math.radians(azimuth)
+            level = args.distance * math.cos(el)
+            eye = (
+                CENTRE + level * math.sin(az),
+                args.distance * math.sin(el) + 0.5 * hs,
+                CENTRE - level * math.cos(az),
+            )
+            camera_spec = CameraSpec(eye, (CENTRE, 0.5 * hs, CENTRE), 300.0)
+            placed = dataclasses.replace(scene, cameras={"default": camera_spec})
+            row: dict = {"elevation": elevation, "azimuth": azimuth, "height_scale": hs}
+            for mode in args.modes.split(","):
+                seen = {}
+                for view, (sun, ambient) in {
+                    "ambient": (BLACK, WHITE),
+                    "sun": (WHITE, BLACK),
+                }.items():
+                    doc = placed.document()
+                    doc.light = dataclasses.replace(
+                        project.light, sun_color=sun, ambient_color=ambient, soil_color=BLACK,
+                        fog_distance=1e6, blade_ao_impact=0.0,
+                    )  # fmt: skip
+                    camera = doc.camera("default")
+                    with HeadlessRenderer(doc, ctx, mode=mode) as renderer:
+                        renderer.pipeline.ground.under_grass = BLACK
+                        renderer.render(camera, SIZE, measure=False)  # slices convert
+                        frame = renderer.render(camera, SIZE, measure=False)[0]
+                    seen[view] = float(frame[..., 1][WINDOW].mean()) / 255.0
+                row[mode] = {
+                    "coverage": round(seen["ambient"], 3),
+                    "diffuse": round(seen["sun"] / max(seen["ambient"], 1e-6), 3),
+                }
+            print(json.dumps(row), flush=True)
+
+
+if __name__ == "__main__":
+    main()
