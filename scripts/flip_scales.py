@@ -37,7 +37,7 @@ def main() -> None:
     from app.quality import QualityRun, shifted
     from app.scenes import get_scene
     from core.project_file import load_project
-    from core.quality import Comparison, figures
+    from core.quality import Comparison
     from render.grass_type import technique_colors
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -82,14 +82,14 @@ def main() -> None:
         "floor_frame_blurred": {str(s): figure(blurred(floor_frame, s)) for s in (1, 2, 4)},
     }
     if args.regions:
-        out["regions"] = region_oracles(reference, lod, techniques, colors, floor, figures)
+        out["regions"] = region_oracles(reference, lod, techniques, colors, floor)
     print(json.dumps(out, indent=1))
 
 
-def region_oracles(reference, lod, techniques, colors, floor, figures) -> dict:
+def region_oracles(reference, lod, techniques, colors, floor) -> dict:
     """Per technique region: its figure (× the floor's over the same region) with that region's
     pixels replaced by each oracle."""
-    from core.quality import technique_regions
+    from core.quality import Comparison, figures, technique_regions
 
     pixels = technique_regions(lod, techniques, colors)
     _found, _lv, quarter = figures(reference, lod, techniques, colors)
@@ -97,8 +97,8 @@ def region_oracles(reference, lod, techniques, colors, floor, figures) -> dict:
 
     def region_figure(name: str, image: np.ndarray) -> float | None:
         frame = np.clip(image, 0, 255).astype(np.uint8)
-        _f, lv, _r = figures(reference, frame, techniques, colors)
-        here, base = lv.region(quarter[name]), floor.region(quarter[name])
+        here = Comparison.of(reference, frame).region(quarter[name])
+        base = floor.region(quarter[name])
         return round(here / base, 2) if here and base else None
 
     result = {}
