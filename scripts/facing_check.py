@@ -27,7 +27,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 WHITE, BLACK = (1.0, 1.0, 1.0), (0.0, 0.0, 0.0)
 SIZE = (320, 180)
 WINDOW = (slice(70, 110), slice(100, 220))
-CENTRE = 16.0  # the bench's 32 × 32 cells
+CENTRE = 0.0  # the centre of the bench's 32 × 32 cells (its origin is at -16, -16)
 
 
 def main() -> None:
