@@ -78,3 +78,86 @@ def facing_lambert(
         w = w * np.repeat(canopy.transmittance(y, theta), azimuths, axis=1)
     table = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
     return table.reshape(elevations, azimuths).astype(np.float32)
+
+
+# -- upright blades on sloping ground ---------------------------------------------------------
+# A blade stands upright wherever it grows (thesis eq. 6.13: the whole blade rises by its
+# root's ground), so on a slope the parts of it that lean downhill stand higher over the ground
+# beneath them, and those that lean uphill lower, some under it. The slices instead are
+# sheared by the ground under each sample (eqs. 6.16–6.18): every part keeps its height over
+# the ground below it, as if the blades lay on the slope. Seen along a slope that rises away
+# from the eye, the upright blades show their downhill parts, whose eye-facing sides turn down
+# and away from the light: on a 14° ramp seen at 5° the blades' diffuse factor is 0.39, the
+# sheared slices' 0.44 — the value the table below predicts for each (scripts/facing_check.py
+# --height-scale 8; flat ground 0.44 for both).
+SLOPES = 9  # ratio-table layers: the view's elevation over the ground minus over the horizon
+SLOPE_SPAN = np.radians(30.0)  # the outer layers' difference; layer t in -1 … 1 is SPAN · t|t|
+RATIO_LIMITS = (0.5, 2.0)  # where a view grazes the ground a few blade tips decide the ratio
+GRAZING = np.radians(1.0)  # the least elevation over the ground a view is counted at
+MAX_RISE = 1.0  # ground steeper than 45° along the view counts as 45°
+
+
+def slope_offsets(count: int = SLOPES) -> np.ndarray:
+    """The table layers' elevation over the ground minus elevation over the horizon (radians):
+    0 (flat ground, ratio 1) is the middle layer, the layers dense about it (shaders invert
+    this: shaders/_lighting.glsl)."""
+    t = np.linspace(-1.0, 1.0, count)
+    return SLOPE_SPAN * t * np.abs(t)
+
+
+def slope_ratio(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    light_dir: np.ndarray,
+    translucency: float,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    slopes: int = SLOPES,
+    sample: int = 6000,
+) -> np.ndarray:
+    """(slopes, elevations, azimuths) float32: the blades' diffuse factor seen from e (the
+    table's elevation e and azimuth) at elevation θ over the ground (e + the layer's offset), over the
+    same of blades sheared with the ground, as the slices are. Both weigh each vertex by
+    |n · e| and by the share of a view at θ that reaches its height (Canopy.transmittance): the
+    sheared blade at its own height y, the upright one at y − g · (its offset from the root
+    along the view), g = tan θ − tan e the ground's rise per unit run away from the eye, and
+    not at all where that is below the ground. 1 on flat ground (the middle layer)."""
+    n = np.asarray(normals, np.float64).reshape(-1, 3)
+    length = np.linalg.norm(n, axis=1)
+    pick = np.flatnonzero(length > 1e-6)
+    pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
+    table = np.ones((slopes, elevations, azimuths), np.float32)
+    if len(pick) == 0:
+        return table
+    n = n[pick] / length[pick, None]
+    position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
+    y = position[:, 1]
+    offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
+    e = directions(azimuths, elevations)  # (el, az, 3), towards the eye
+    ne = (n @ e.reshape(-1, 3).T).reshape(-1, elevations, azimuths)
+    facing_l = np.sign(ne) * (n @ np.asarray(light_dir, np.float64))[:, None, None]
+    lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
+    w_view = np.abs(ne)
+    away = -e[0, :, :][:, [0, 2]]  # (az, 2): horizontally away from the eye
+    away /= np.linalg.norm(away, axis=1, keepdims=True)
+    along = offset @ away.T  # (k, az): each vertex's offset from its root along the view
+    elevation = np.arcsin(e[:, 0, 1])  # (el,)
+
+    def mean(w: np.ndarray) -> np.ndarray:
+        w = w * w_view
+        return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
+
+    for s, du in enumerate(slope_offsets(slopes)):
+        theta = np.clip(elevation + du, GRAZING, 0.5 * np.pi - 1e-3)  # (el,)
+        g = np.clip(np.tan(theta) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (el,)
+        sheared = np.broadcast_to(canopy.transmittance(y, theta)[:, :, None], w_view.shape)
+        upright_y = y[:, None, None] - g[None, :, None] * along[:, None, :]  # (k, el, az)
+        reach = np.stack(
+            [canopy.transmittance(upright_y[:, j, :].reshape(-1), theta[j : j + 1])[:, 0]
+             for j in range(elevations)], axis=-1,
+        ).reshape(len(y), azimuths, elevations).transpose(0, 2, 1)  # fmt: skip
+        upright = reach * (upright_y >= 0.0)
+        table[s] = np.clip(mean(upright) / np.maximum(mean(sheared), 1e-6), *RATIO_LIMITS)
+    return table

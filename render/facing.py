@@ -10,11 +10,12 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
-from core.facing import AZIMUTHS, ELEVATIONS, facing_lambert
+from core.facing import AZIMUTHS, ELEVATIONS, SLOPES, facing_lambert, slope_ratio
 from core.lighting import Lighting
 from core.patch import GrassPatch
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
+SLOPE_UNIT = 12  # texture unit of the slope-ratio table
 
 
 class FacingTable:
@@ -59,6 +60,46 @@ class FacingTable:
         ):  # fmt: skip
             self.texture.write(np.ascontiguousarray(self.table(lighting)).tobytes())
             self._patch_used, self._light_used, self._canopy_used = patch, light, canopy
+        self.texture.use(unit)
+
+    def release(self) -> None:
+        self.texture.release()
+
+
+class SlopeTable:
+    """The slope-ratio table of one grass type (core/facing.py slope_ratio): upright blades on
+    sloping ground against the sheared slices, by view direction and elevation over the ground;
+    a 3D float texture, ones until the grass type has slices (its canopy), rebuilt when the
+    patch, the canopy or the light changes. Both far representations multiply their diffuse
+    factor by it (shaders/_lighting.glsl slope_ratio)."""
+
+    def __init__(
+        self,
+        ctx: moderngl.Context,
+        patch: Callable[[], GrassPatch | None],
+        canopy: Callable[[], Canopy | None],
+    ) -> None:
+        self._patch, self._canopy = patch, canopy
+        self.texture = ctx.texture3d((AZIMUTHS, ELEVATIONS, SLOPES), 1, dtype="f4")
+        self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        self.texture.repeat_x = True  # azimuth wraps
+        self.texture.repeat_y = False  # (the layers are read between their first and last centres)
+        self.texture.write(np.ones((SLOPES, ELEVATIONS, AZIMUTHS), np.float32).tobytes())
+        self._used: tuple | None = None  # the patch, canopy and light the table is of
+
+    def use(self, lighting: Lighting, unit: int = SLOPE_UNIT) -> None:
+        patch, canopy = self._patch(), self._canopy()
+        light = (*lighting.sun_direction, lighting.translucency)
+        if patch is not None and canopy is not None:
+            old = self._used
+            if old is None or old[0] is not patch or old[1] is not canopy or old[2] != light:
+                v = patch.vertices
+                table = slope_ratio(
+                    v["normal"], v["position"], v["root"], canopy,
+                    lighting.sun_direction, lighting.translucency,
+                )  # fmt: skip
+                self.texture.write(np.ascontiguousarray(table).tobytes())
+                self._used = (patch, canopy, light)
         self.texture.use(unit)
 
     def release(self) -> None:

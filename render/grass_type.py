@@ -14,7 +14,7 @@ from core.lod import LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
 from render.conversion import PatchConverter
-from render.facing import FacingTable
+from render.facing import FacingTable, SlopeTable
 from render.geometry import GeometryRenderer
 from render.image import ImageRenderer
 from render.slices import SliceTextures
@@ -52,6 +52,8 @@ class GrassTypeRenderer:
         # image-based grass has its own, of the blade parts a view reaches (render/facing.py)
         self.facing = FacingTable(ctx, lambda: self.patch)
         self.image.facing = FacingTable(ctx, lambda: self.patch, self._canopy)
+        # upright blades on slopes against the sheared slices, for the volumes (render/facing.py)
+        self.slope = SlopeTable(ctx, lambda: self.patch, self._canopy)
         self.lod = LodConfig()
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
@@ -80,6 +82,7 @@ class GrassTypeRenderer:
             renderer.technique_color = volume_technique_color(slices)
             renderer.density = self.geometry.density
             renderer.facing = self.facing
+            renderer.slope = self.slope
             self._set_channel(renderer)
             renderer.set_instances(self._instances)
             if slices in self._slices:
@@ -162,5 +165,6 @@ class GrassTypeRenderer:
             textures.release()
         self._slices = {}
         self.facing.release()
+        self.slope.release()
         if self.image.facing is not None:
             self.image.facing.release()

@@ -12,7 +12,7 @@ import moderngl
 import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
-from render.facing import FACING_UNIT, FacingTable
+from render.facing import FACING_UNIT, SLOPE_UNIT, FacingTable, SlopeTable
 from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
@@ -54,6 +54,7 @@ class VolumeRenderer(InstancedRenderer):
         self.slices = 0
         self.density = 1.0
         self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
+        self.slope: SlopeTable | None = None  # the same
 
     def set_slices(self, textures: SliceTextures | None, owned: bool = True) -> None:
         """The slices to draw. With owned=False the caller keeps and releases them."""
@@ -97,6 +98,12 @@ class VolumeRenderer(InstancedRenderer):
         if self.facing is not None:
             self.facing.use(frame.lighting)
             p["u_facing"].value = FACING_UNIT
+        # (the sampler keeps its own unit even without a table: two sampler types on one
+        # unit are an invalid operation)
+        p["u_slope_ratio"].value = SLOPE_UNIT
+        p["u_slopes"].value = self.slope is not None
+        if self.slope is not None:
+            self.slope.use(frame.lighting)
         for unit, (name, tex) in enumerate(
             [
                 ("u_side_color", t.sides.color),

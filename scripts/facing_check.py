@@ -77,6 +77,7 @@ def main() -> None:
                     doc = placed.document()
                     doc.light = dataclasses.replace(
                         project.light, sun_color=sun, ambient_color=ambient, soil_color=BLACK,
+                        sky_color=BLACK,
                         fog_distance=1e6, blade_ao_impact=0.0,
                     )  # fmt: skip
                     camera = doc.camera("default")

@@ -33,6 +33,25 @@ float facing_lambert(vec3 to_eye) {
     return textureLod(u_facing, vec2(azimuth, elevation), 0.0).r;
 }
 
+// Upright blades on sloping ground against the slices, which are sheared with it (core/
+// facing.py slope_ratio, render/facing.py): the factor on a far representation's diffuse light
+// seen from to_eye at elevation theta over the ground (radians); 1 on flat ground. The table's
+// layers hold elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1.
+uniform bool u_slopes;
+uniform sampler3D u_slope_ratio;
+const float SLOPE_SPAN = 0.52359878;  // core/facing.py SLOPE_SPAN (30°)
+const float SLOPE_LAYERS = 9.0;       // core/facing.py SLOPES
+
+float slope_ratio(vec3 to_eye, float theta) {
+    if (!u_slopes) return 1.0;
+    vec3 e = normalize(to_eye);
+    float elevation = asin(clamp(e.y, 0.0, 1.0));
+    float du = theta - elevation;
+    float t = clamp(sign(du) * sqrt(abs(du) / SLOPE_SPAN), -1.0, 1.0);
+    float layer = ((t + 1.0) * 0.5 * (SLOPE_LAYERS - 1.0) + 0.5) / SLOPE_LAYERS;
+    return textureLod(u_slope_ratio, vec3(atan(e.x, e.z) * 0.15915494, elevation * 0.63661977, layer), 0.0).r;
+}
+
 vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
     return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * lambert_through(n));
 }

@@ -177,6 +177,17 @@ void main() {
 
     float side_spread = level_value(u_side_spread, lod);
     float facing = facing_lambert(-d);  // the blades' mean diffuse factor seen along the ray
+    // The slices are sheared with the ground, the blades stand upright on it: on a slope the
+    // light differs by the ratio of the two (core/facing.py slope_ratio), at the ray's elevation
+    // over the ground where it enters (tan θ = (u · n) / (n_y |u_xz|), as in image.glsl).
+    vec2 slope = vec2(
+        ground_density(design_uv(v_config, e.xz + vec2(1.0, 0.0))).x
+            - ground_density(design_uv(v_config, e.xz - vec2(1.0, 0.0))).x,
+        ground_density(design_uv(v_config, e.xz + vec2(0.0, 1.0))).x
+            - ground_density(design_uv(v_config, e.xz - vec2(0.0, 1.0))).x);
+    vec3 ground_up = normalize(vec3(-0.5 * slope.x, 1.0, -0.5 * slope.y));
+    float over_ground = atan(max(dot(-d, ground_up), 0.0), max(ground_up.y * length(d.xz), 1e-4));
+    float slope_l = slope_ratio(-d, over_ground);
     // Opacity per slice crossed. A slice holds what a ray across its slab meets at right
     // angles, and both families hold every blade: a ray travelling a unit of the patch across
     // meets |d.x| N slices of one and |d.z| N of the other, where it meets the blades of N
@@ -232,7 +243,7 @@ void main() {
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
         if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun)))
-            floor_sample = horizontal(floor_at, lod, facing, floor_ao_l);
+            floor_sample = horizontal(floor_at, lod, facing * slope_l, floor_ao_l);
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
     for (int i = 0; i < u_max_steps; ++i) {
@@ -295,7 +306,7 @@ void main() {
             // of the family's mean normal.
             float len = length(n);
             float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
-            float l = mix(lambert_through(n / max(len, 1e-4)), facing, k);
+            float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
             gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;
             if (g_alpha > u_opaque) break;

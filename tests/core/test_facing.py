@@ -62,3 +62,45 @@ def test_blades_hidden_below_the_canopy_count_less_the_flatter_the_view():
     assert seen[0].mean() < 0.2 * plain[0].mean()
     np.testing.assert_allclose(seen[0], tips[0], atol=0.02)
     assert seen[-1].mean() > 2.0 * seen[0].mean()
+
+
+def _uniform_canopy(height: float = 1.0):
+    from core.canopy import Canopy
+
+    stack = np.zeros((2, 8, 4, 4), np.float32)
+    stack[..., 3] = 0.3
+    return Canopy.of([stack], height)
+
+
+def test_slope_ratio_is_one_on_flat_ground():
+    from core.facing import SLOPES, slope_ratio
+
+    rng = np.random.default_rng(5)
+    normals = rng.normal(size=(400, 3))
+    roots = rng.uniform(0, 1, size=(400, 2))
+    positions = np.column_stack([roots[:, 0], rng.uniform(0, 1, 400), roots[:, 1]])
+    positions[:, [0, 2]] += rng.normal(scale=0.1, size=(400, 2))
+    light = np.array([0.3, 0.8, -0.5]) / np.linalg.norm([0.3, 0.8, -0.5])
+    table = slope_ratio(normals, positions, roots, _uniform_canopy(), light, 0.3)
+    assert table.shape == (SLOPES, 8, 32)
+    np.testing.assert_allclose(table[SLOPES // 2], 1.0, atol=1e-5)
+
+
+def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
+    """Seen from -z, tips leaning away from the eye face the sky (lit by a sun overhead), tips
+    leaning towards it face sideways (lit edge-on: dark). Where the ground rises away from the
+    eye, the tips leaning up the slope come close to it and hide: upright blades are darker than
+    blades sheared with the ground (ratio < 1); where it falls away, brighter (> 1)."""
+    from core.facing import SLOPES, slope_ratio
+
+    k = 200
+    roots = np.zeros((2 * k, 2))
+    up, side = [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]
+    normals = np.array([up] * k + [side] * k)
+    positions = np.array([[0.0, 0.5, 0.3]] * k + [[0.0, 0.5, -0.3]] * k)  # away, towards
+    table = slope_ratio(normals, positions, roots, _uniform_canopy(), np.array([0, 1.0, 0]), 0.0)
+    towards_minus_z = 15  # the column whose azimuth is nearest 180 degrees: the eye at -z
+    low = table[:, 1, towards_minus_z]  # the second row: ~17 degrees over the horizon
+    assert low[SLOPES // 2] == 1.0
+    assert (low[SLOPES // 2 + 1 :] < 0.97).all(), low  # rising away: darker
+    assert (low[: SLOPES // 2] > 1.03).all(), low  # falling away: brighter
