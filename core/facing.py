@@ -115,7 +115,7 @@ def slope_ratio(
     azimuths: int = AZIMUTHS,
     elevations: int = ELEVATIONS,
     slopes: int = SLOPES,
-    sample: int = 6000,
+    sample: int = 3000,
 ) -> np.ndarray:
     """(slopes, elevations, azimuths) float32: the blades' diffuse factor seen from e (the
     table's elevation e and azimuth) at elevation θ over the ground (e + the layer's offset), over the
