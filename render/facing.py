@@ -70,8 +70,9 @@ class SlopeTable:
     """The slope-ratio table of one grass type (core/facing.py slope_ratio): upright blades on
     sloping ground against the sheared slices, by view direction and elevation over the ground;
     a 3D float texture, ones until the grass type has slices (its canopy), rebuilt when the
-    patch, the canopy or the light changes. Both far representations multiply their diffuse
-    factor by it (shaders/_lighting.glsl slope_ratio)."""
+    patch, the canopy or the light changes. The volume multiplies its diffuse factor by it
+    (shaders/_lighting.glsl slope_ratio); the image-based grass does not (README: it made the
+    meadow's far field worse)."""
 
     def __init__(
         self,
@@ -83,7 +84,7 @@ class SlopeTable:
         self.texture = ctx.texture3d((AZIMUTHS, ELEVATIONS, SLOPES), 1, dtype="f4")
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = True  # azimuth wraps
-        self.texture.repeat_y = False  # (the layers are read between their first and last centres)
+        self.texture.repeat_y = False  # (z repeats, but is read between its first and last centres)
         self.texture.write(np.ones((SLOPES, ELEVATIONS, AZIMUTHS), np.float32).tobytes())
         self._used: tuple | None = None  # the patch, canopy and light the table is of
 

@@ -99,7 +99,7 @@ def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
     normals = np.array([up] * k + [side] * k)
     positions = np.array([[0.0, 0.5, 0.3]] * k + [[0.0, 0.5, -0.3]] * k)  # away, towards
     table = slope_ratio(normals, positions, roots, _uniform_canopy(), np.array([0, 1.0, 0]), 0.0)
-    towards_minus_z = 15  # the column whose azimuth is nearest 180 degrees: the eye at -z
+    towards_minus_z = 15  # a column beside azimuth 180 degrees (174.4): the eye at -z
     low = table[:, 1, towards_minus_z]  # the second row: ~17 degrees over the horizon
     assert low[SLOPES // 2] == 1.0
     assert (low[SLOPES // 2 + 1 :] < 0.97).all(), low  # rising away: darker
