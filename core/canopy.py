@@ -96,13 +96,17 @@ class Canopy:
         """The share of a view from elevation θ (radians, (m,)) that reaches height y (world
         units, (k,)) through the rows above it: (k, m), the families' mean extinction, half of
         y's own row counted."""
+        return self.reach(np.asarray(y)[:, None], np.asarray(theta)[None, :])
+
+    def reach(self, y: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """The same, element by element of y and θ broadcast together."""
         sigma = GAIN * np.mean([profile[0] for profile in self.profiles], axis=0)
         dy = self.height / len(sigma)
         above = np.concatenate([np.cumsum(sigma[::-1])[::-1], [0.0]])  # rows r … top
         rows = np.clip(np.floor(np.asarray(y) / dy).astype(np.int64), 0, len(sigma) - 1)
         depth = (above[rows + 1] + 0.5 * sigma[rows]) * dy
         depth = np.where(np.asarray(y) >= self.height, 0.0, depth)
-        return np.exp(-depth[:, None] / np.maximum(np.tan(np.asarray(theta)), 1e-3)[None, :])
+        return np.exp(-depth / np.maximum(np.tan(np.asarray(theta)), 1e-3))
 
     def shade_met(
         self, ao_height: float, under: Canopy | None = None, count: int = ELEVATIONS

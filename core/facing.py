@@ -88,8 +88,8 @@ def facing_lambert(
 # the ground below it, as if the blades lay on the slope. Seen along a slope that rises away
 # from the eye, the upright blades show their downhill parts, whose eye-facing sides turn down
 # and away from the light: on a 14° ramp seen at 5° the blades' diffuse factor is 0.39, the
-# sheared slices' 0.44 — the value the table below predicts for each (scripts/facing_check.py
-# --height-scale 8; flat ground 0.44 for both).
+# sheared slices' 0.44; slope_means' model of each gives 0.395 and 0.450 (scripts/
+# facing_check.py --height-scale 8 --elevations 5 --azimuths 0 --predict; flat ground 0.44).
 SLOPES = 9  # ratio-table layers: the view's elevation over the ground minus over the horizon
 SLOPE_SPAN = np.radians(30.0)  # the outer layers' difference; layer t in -1 … 1 is SPAN · t|t|
 RATIO_LIMITS = (0.5, 2.0)  # where a view grazes the ground a few blade tips decide the ratio
@@ -105,6 +105,54 @@ def slope_offsets(count: int = SLOPES) -> np.ndarray:
     return SLOPE_SPAN * t * np.abs(t)
 
 
+def slope_means(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    light_dir: np.ndarray,
+    translucency: float,
+    to_eye: np.ndarray,
+    theta: np.ndarray,
+    sample: int = 3000,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The blades' diffuse factor seen from directions `to_eye` ((m, 3)) at elevations θ over
+    the ground ((m,), radians): (upright, sheared), each (m,). Both weigh each vertex by
+    |n · e| and by the share of a view at θ that reaches its height (Canopy.reach): the sheared
+    blade (as the slices are) at its own height y, the upright one at y − g · (its offset from
+    the root along the view), g = tan θ − tan e the ground's rise per unit run away from the
+    eye, and not at all where that is below the ground."""
+    n = np.asarray(normals, np.float64).reshape(-1, 3)
+    length = np.linalg.norm(n, axis=1)
+    pick = np.flatnonzero(length > 1e-6)
+    pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
+    e = np.asarray(to_eye, np.float64).reshape(-1, 3)
+    e = e / np.linalg.norm(e, axis=1, keepdims=True)
+    if len(pick) == 0:
+        return np.zeros(len(e)), np.zeros(len(e))
+    n = n[pick] / length[pick, None]
+    position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
+    y = position[:, 1:2]  # (k, 1)
+    offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
+    ne = n @ e.T  # (k, m)
+    facing_l = np.sign(ne) * (n @ np.asarray(light_dir, np.float64))[:, None]
+    lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
+    away = -e[:, [0, 2]]
+    away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
+    theta = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
+    elevation = np.arcsin(np.clip(e[:, 1], 0.0, 1.0))
+    g = np.clip(np.tan(theta) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (m,)
+    g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
+    upright_y = y - g * (offset @ away.T)  # (k, m)
+
+    def mean(w: np.ndarray) -> np.ndarray:
+        w = w * np.abs(ne)
+        return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
+
+    upright = canopy.reach(upright_y, theta) * (upright_y >= 0.0)
+    return mean(upright), mean(canopy.reach(y, theta))
+
+
 def slope_ratio(
     normals: np.ndarray,
     positions: np.ndarray,
@@ -117,47 +165,16 @@ def slope_ratio(
     slopes: int = SLOPES,
     sample: int = 3000,
 ) -> np.ndarray:
-    """(slopes, elevations, azimuths) float32: the blades' diffuse factor seen from e (the
-    table's elevation e and azimuth) at elevation θ over the ground (e + the layer's offset), over the
-    same of blades sheared with the ground, as the slices are. Both weigh each vertex by
-    |n · e| and by the share of a view at θ that reaches its height (Canopy.transmittance): the
-    sheared blade at its own height y, the upright one at y − g · (its offset from the root
-    along the view), g = tan θ − tan e the ground's rise per unit run away from the eye, and
-    not at all where that is below the ground. 1 on flat ground (the middle layer)."""
-    n = np.asarray(normals, np.float64).reshape(-1, 3)
-    length = np.linalg.norm(n, axis=1)
-    pick = np.flatnonzero(length > 1e-6)
-    pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
+    """(slopes, elevations, azimuths) float32: slope_means' upright over sheared at the table's
+    directions, each layer at elevation over the ground = the direction's + the layer's offset
+    (slope_offsets); 1 on flat ground (the middle layer)."""
+    e = directions(azimuths, elevations).reshape(-1, 3)
+    elevation = np.arcsin(e[:, 1])
     table = np.ones((slopes, elevations, azimuths), np.float32)
-    if len(pick) == 0:
-        return table
-    n = n[pick] / length[pick, None]
-    position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
-    y = position[:, 1]
-    offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
-    e = directions(azimuths, elevations)  # (el, az, 3), towards the eye
-    ne = (n @ e.reshape(-1, 3).T).reshape(-1, elevations, azimuths)
-    facing_l = np.sign(ne) * (n @ np.asarray(light_dir, np.float64))[:, None, None]
-    lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
-    w_view = np.abs(ne)
-    away = -e[0, :, :][:, [0, 2]]  # (az, 2): horizontally away from the eye
-    away /= np.linalg.norm(away, axis=1, keepdims=True)
-    along = offset @ away.T  # (k, az): each vertex's offset from its root along the view
-    elevation = np.arcsin(e[:, 0, 1])  # (el,)
-
-    def mean(w: np.ndarray) -> np.ndarray:
-        w = w * w_view
-        return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
-
     for s, du in enumerate(slope_offsets(slopes)):
-        theta = np.clip(elevation + du, GRAZING, 0.5 * np.pi - 1e-3)  # (el,)
-        g = np.clip(np.tan(theta) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (el,)
-        sheared = np.broadcast_to(canopy.transmittance(y, theta)[:, :, None], w_view.shape)
-        upright_y = y[:, None, None] - g[None, :, None] * along[:, None, :]  # (k, el, az)
-        reach = np.stack(
-            [canopy.transmittance(upright_y[:, j, :].reshape(-1), theta[j : j + 1])[:, 0]
-             for j in range(elevations)], axis=-1,
-        ).reshape(len(y), azimuths, elevations).transpose(0, 2, 1)  # fmt: skip
-        upright = reach * (upright_y >= 0.0)
-        table[s] = np.clip(mean(upright) / np.maximum(mean(sheared), 1e-6), *RATIO_LIMITS)
+        upright, sheared = slope_means(
+            normals, positions, roots, canopy, light_dir, translucency, e, elevation + du, sample
+        )
+        ratio = np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0)
+        table[s] = np.clip(ratio, *RATIO_LIMITS).reshape(elevations, azimuths)
     return table

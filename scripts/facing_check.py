@@ -7,7 +7,7 @@ ambient-only view. Sun over ambient over the window is the diffuse factor the gr
 
     .venv/bin/python scripts/facing_check.py PROJECT [--type 1] [--distance 20]
         [--height-scale 0] [--elevations 5,10,20] [--azimuths 0,90,180,270]
-        [--modes geometry,image]
+        [--modes geometry,image] [--predict]
 
 Azimuth 0 puts the camera at -z looking towards +z (up the ramp). Prints one JSON line a view."""
 
@@ -32,6 +32,7 @@ CENTRE = 0.0  # the centre of the bench's 32 × 32 cells (its origin is at -16, 
 
 def main() -> None:
     from app.scenes import CameraSpec, get_scene
+    from core.facing import slope_means
     from core.project_file import load_project
     from render.context import standalone
     from render.headless import HeadlessRenderer
@@ -44,6 +45,10 @@ def main() -> None:
     ap.add_argument("--elevations", default="5,10,20")
     ap.add_argument("--azimuths", default="0,90,180,270")
     ap.add_argument("--modes", default="geometry,image")
+    ap.add_argument(
+        "--predict", action="store_true",
+        help="also core/facing.py slope_means' upright and sheared diffuse factor at each view",
+    )  # fmt: skip
     args = ap.parse_args()
     project = load_project(args.project)
     params = project.params(args.type).replace(
@@ -56,6 +61,13 @@ def main() -> None:
 
     scene = dataclasses.replace(get_scene("bench"), params=params, height_map=ramp, height_scale=hs)
     ctx = standalone()
+    model = None
+    if args.predict:  # the type's patch and canopy, as the renderer holds them
+        doc = scene.document()
+        with HeadlessRenderer(doc, ctx, mode="image") as renderer:
+            renderer.render(doc.camera("default"), (64, 36), measure=False)
+            grass = renderer.pipeline.grass_types[0]
+            model = (grass.patch.vertices, grass.image.textures.canopy)
     for elevation in (float(v) for v in args.elevations.split(",")):
         for azimuth in (float(v) for v in args.azimuths.split(",")):
             el, az = math.radians(elevation), math.radians(azimuth)
@@ -90,6 +102,19 @@ def main() -> None:
                     "coverage": round(seen["ambient"], 3),
                     "diffuse": round(seen["sun"] / max(seen["ambient"], 1e-6), 3),
                 }
+            if model is not None:
+                to_eye = np.subtract(eye, camera_spec.target)
+                away = -to_eye[[0, 2]] / np.linalg.norm(to_eye[[0, 2]])
+                rise = away[1] * hs / 32.0  # the ramp rises along z over the bench's 32 cells
+                theta = math.atan(math.tan(el) + rise)
+                vertices, canopy = model
+                upright, sheared = slope_means(
+                    vertices["normal"], vertices["position"], vertices["root"], canopy,
+                    project.light.sun_direction, project.light.translucency,
+                    to_eye[None, :], np.array([theta]),
+                )  # fmt: skip
+                row["model"] = {"upright": round(float(upright[0]), 3),
+                                "sheared": round(float(sheared[0]), 3)}  # fmt: skip
             print(json.dumps(row), flush=True)
 
 
