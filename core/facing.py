@@ -117,7 +117,7 @@ def slope_means(
     sample: int = 3000,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The blades' diffuse factor seen from directions `to_eye` ((m, 3)) at elevations θ over
-    the ground ((m,), radians): (upright, sheared), each (m,). Both weigh each vertex by
+    the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape. Both weigh each vertex by
     |n · e| and by the share of a view at θ that reaches its height (Canopy.reach): the sheared
     blade (as the slices are) at its own height y, the upright one at y − g · (its offset from
     the root along the view), g = tan θ − tan e the ground's rise per unit run away from the
@@ -129,7 +129,7 @@ def slope_means(
     e = np.asarray(to_eye, np.float64).reshape(-1, 3)
     e = e / np.linalg.norm(e, axis=1, keepdims=True)
     if len(pick) == 0:
-        return np.zeros(len(e)), np.zeros(len(e))
+        return np.zeros(np.shape(theta)), np.zeros(np.shape(theta))
     n = n[pick] / length[pick, None]
     position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
     y = position[:, 1:2]  # (k, 1)
@@ -139,18 +139,23 @@ def slope_means(
     lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
     away = -e[:, [0, 2]]
     away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
-    theta = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
     elevation = np.arcsin(np.clip(e[:, 1], 0.0, 1.0))
-    g = np.clip(np.tan(theta) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (m,)
-    g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
-    upright_y = y - g * (offset @ away.T)  # (k, m)
+    along = offset @ away.T  # (k, m): each vertex's offset from its root along the view
 
     def mean(w: np.ndarray) -> np.ndarray:
         w = w * np.abs(ne)
         return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
 
-    upright = canopy.reach(upright_y, theta) * (upright_y >= 0.0)
-    return mean(upright), mean(canopy.reach(y, theta))
+    thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
+    upright, sheared = np.zeros(thetas.shape), np.zeros(thetas.shape)
+    for index in np.ndindex(thetas.shape[:-1]):  # a θ for each direction per pass
+        t = thetas[index]
+        g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (m,)
+        g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
+        upright_y = y - g * along  # (k, m)
+        upright[index] = mean(canopy.reach(upright_y, t) * (upright_y >= 0.0))
+        sheared[index] = mean(canopy.reach(y, t))
+    return upright, sheared
 
 
 def slope_ratio(
@@ -169,12 +174,9 @@ def slope_ratio(
     directions, each layer at elevation over the ground = the direction's + the layer's offset
     (slope_offsets); 1 on flat ground (the middle layer)."""
     e = directions(azimuths, elevations).reshape(-1, 3)
-    elevation = np.arcsin(e[:, 1])
-    table = np.ones((slopes, elevations, azimuths), np.float32)
-    for s, du in enumerate(slope_offsets(slopes)):
-        upright, sheared = slope_means(
-            normals, positions, roots, canopy, light_dir, translucency, e, elevation + du, sample
-        )
-        ratio = np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0)
-        table[s] = np.clip(ratio, *RATIO_LIMITS).reshape(elevations, azimuths)
-    return table
+    theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
+    upright, sheared = slope_means(
+        normals, positions, roots, canopy, light_dir, translucency, e, theta, sample
+    )
+    ratio = np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0)
+    return np.clip(ratio, *RATIO_LIMITS).reshape(slopes, elevations, azimuths).astype(np.float32)
