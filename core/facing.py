@@ -173,10 +173,40 @@ def slope_ratio(
     """(slopes, elevations, azimuths) float32: slope_means' upright over sheared at the table's
     directions, each layer at elevation over the ground = the direction's + the layer's offset
     (slope_offsets); 1 on flat ground (the middle layer)."""
+    return slope_tables(
+        normals, positions, roots, canopy, light_dir, translucency,
+        azimuths, elevations, slopes, sample,
+    )[..., 0]  # fmt: skip
+
+
+def slope_tables(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    light_dir: np.ndarray,
+    translucency: float,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    slopes: int = SLOPES,
+    sample: int = 3000,
+) -> np.ndarray:
+    """(slopes, elevations, azimuths, 2) float32 over slope_ratio's layers: [..., 0] upright
+    blades over sheared ones (the volume's slices, sheared with the ground), [..., 1] upright
+    blades on the slope over upright blades on flat ground seen from the same direction (the
+    image-based grass, whose light is the flat ground's facing table); 1 on flat ground."""
     e = directions(azimuths, elevations).reshape(-1, 3)
     theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
     upright, sheared = slope_means(
         normals, positions, roots, canopy, light_dir, translucency, e, theta, sample
     )
-    ratio = np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0)
-    return np.clip(ratio, *RATIO_LIMITS).reshape(slopes, elevations, azimuths).astype(np.float32)
+    flat = upright[slopes // 2]  # the middle layer: elevation over the ground = the direction's
+    out = np.stack(
+        [
+            np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0),
+            np.where(flat > 0.0, upright / np.maximum(flat, 1e-6), 1.0),
+        ],
+        axis=-1,
+    )
+    out = np.clip(out, *RATIO_LIMITS).reshape(slopes, elevations, azimuths, 2)
+    return out.astype(np.float32)

@@ -10,7 +10,7 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
-from core.facing import AZIMUTHS, ELEVATIONS, SLOPES, facing_lambert, slope_ratio
+from core.facing import AZIMUTHS, ELEVATIONS, SLOPES, facing_lambert, slope_tables
 from core.lighting import Lighting
 from core.patch import GrassPatch
 
@@ -67,12 +67,13 @@ class FacingTable:
 
 
 class SlopeTable:
-    """The slope-ratio table of one grass type (core/facing.py slope_ratio): upright blades on
-    sloping ground against the sheared slices, by view direction and elevation over the ground;
-    a 3D float texture, ones until the grass type has slices (its canopy), rebuilt when the
-    patch, the canopy or the light changes. The volume multiplies its diffuse factor by it
-    (shaders/_lighting.glsl slope_ratio); the image-based grass does not (README: it made the
-    meadow's far field worse)."""
+    """The slope-ratio tables of one grass type (core/facing.py slope_tables), by view direction
+    and elevation over the ground: upright blades on sloping ground against the sheared slices
+    (red: the volume multiplies its diffuse factor by it) and against upright blades on flat
+    ground (green: the image-based grass, lit by the flat ground's facing table); one 3D float
+    texture (shaders/_lighting.glsl slope_ratios), ones until the grass type has slices (its
+    canopy), rebuilt when the patch, the canopy or the light changes. (The volume's ratio on
+    the image-based grass made the meadow's far field worse: README.)"""
 
     def __init__(
         self,
@@ -81,11 +82,11 @@ class SlopeTable:
         canopy: Callable[[], Canopy | None],
     ) -> None:
         self._patch, self._canopy = patch, canopy
-        self.texture = ctx.texture3d((AZIMUTHS, ELEVATIONS, SLOPES), 1, dtype="f4")
+        self.texture = ctx.texture3d((AZIMUTHS, ELEVATIONS, SLOPES), 2, dtype="f4")
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = True  # azimuth wraps
         self.texture.repeat_y = False  # (z repeats, but is read between its first and last centres)
-        self.texture.write(np.ones((SLOPES, ELEVATIONS, AZIMUTHS), np.float32).tobytes())
+        self.texture.write(np.ones((SLOPES, ELEVATIONS, AZIMUTHS, 2), np.float32).tobytes())
         self._used: tuple | None = None  # the patch, canopy and light the table is of
 
     def use(self, lighting: Lighting, unit: int = SLOPE_UNIT) -> None:
@@ -95,7 +96,7 @@ class SlopeTable:
             old = self._used
             if old is None or old[0] is not patch or old[1] is not canopy or old[2] != light:
                 v = patch.vertices
-                table = slope_ratio(
+                table = slope_tables(
                     v["normal"], v["position"], v["root"], canopy,
                     lighting.sun_direction, lighting.translucency,
                 )  # fmt: skip

@@ -54,6 +54,7 @@ class GrassTypeRenderer:
         self.image.facing = FacingTable(ctx, lambda: self.patch, self._canopy)
         # upright blades on slopes against the sheared slices, for the volumes (render/facing.py)
         self.slope = SlopeTable(ctx, lambda: self.patch, self._canopy)
+        self.image.slope = self.slope
         self.lod = LodConfig()
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None

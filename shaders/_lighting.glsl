@@ -42,15 +42,22 @@ uniform sampler3D u_slope_ratio;
 const float SLOPE_SPAN = 0.52359878;  // core/facing.py SLOPE_SPAN (30°)
 const float SLOPE_LAYERS = 9.0;       // core/facing.py SLOPES
 
-float slope_ratio(vec3 to_eye, float theta) {
-    if (!u_slopes) return 1.0;
+vec2 slope_ratios(vec3 to_eye, float theta) {
+    if (!u_slopes) return vec2(1.0);
     vec3 e = normalize(to_eye);
     float elevation = asin(clamp(e.y, 0.0, 1.0));
     float du = theta - elevation;
     float t = clamp(sign(du) * sqrt(abs(du) / SLOPE_SPAN), -1.0, 1.0);
     float layer = ((t + 1.0) * 0.5 * (SLOPE_LAYERS - 1.0) + 0.5) / SLOPE_LAYERS;
-    return textureLod(u_slope_ratio, vec3(atan(e.x, e.z) * 0.15915494, elevation * 0.63661977, layer), 0.0).r;
+    return textureLod(u_slope_ratio, vec3(atan(e.x, e.z) * 0.15915494, elevation * 0.63661977, layer), 0.0).rg;
 }
+
+// the volume's: upright blades against the sheared slices
+float slope_ratio(vec3 to_eye, float theta) { return slope_ratios(to_eye, theta).r; }
+
+// the image-based grass's: upright blades on the slope against upright blades on flat ground,
+// whose light its facing table holds
+float slope_ratio_flat(vec3 to_eye, float theta) { return slope_ratios(to_eye, theta).g; }
 
 vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
     return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * lambert_through(n));

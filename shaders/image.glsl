@@ -137,9 +137,11 @@ void main() {
     vec3 tint = met / max(u_top_mean, vec3(1e-3));
     vec3 albedo = modulate(c.rgb * mix(vec3(1.0), tint, level), design_color(v_design));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
-    // the slice's own normal varies about the patch's mean normal.
+    // the slice's own normal varies about the patch's mean normal; on a slope, as the upright
+    // blades there differ from those on flat ground at this elevation over the ground
+    // (slope_ratio_flat: the DEM's tall grass far away was 10/255 too bright without it).
     float detail = lambert_through(n) / max(lambert_through(u_mean_normal), 0.05);
-    float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0);
+    float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0) * slope_ratio_flat(to_eye, theta);
     // AO_blade (eq. 6.11) of what the view meets of the blades
     float shade = mix(mix(u_level_shade[i], u_level_shade[j], row - float(i)),
                       mix(u_over_shade[i], u_over_shade[j], row - float(i)), under);

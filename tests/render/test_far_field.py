@@ -168,20 +168,30 @@ def test_image_based_grass_shows_the_blades_ambient_occlusion_on_a_slope(headles
     assert abs(shown["image"] - shown["geometry"]) < 0.04, shown
 
 
-def test_volume_lights_upright_blades_on_a_slope_like_the_blades(headless):
+@pytest.mark.parametrize(
+    "mode, grass, within",
+    [("volume", None, 0.05), ("image", "tall", 0.08)],
+)
+def test_far_grass_lights_upright_blades_on_a_slope_like_the_blades(headless, mode, grass, within):
     """The bench on a ramp rising 14 degrees away from a camera 5 degrees over the horizon,
     white blades on black soil: sun alone over ambient alone is the blades' diffuse factor. The
     slices are sheared with the ground, the blades stand upright (their parts that lean down
     the slope stand out): the volume's light takes the slope-ratio table (core/facing.py); it
     was 13 % brighter than the blades here without it (scripts/facing_check.py --height-scale 8
-    --elevations 5 --azimuths 0: 0.445 against 0.392)."""
+    --elevations 5 --azimuths 0: 0.445 against 0.392). The image-based grass is lit as on flat
+    ground (its facing table) and takes the table's upright-on-the-slope over upright-on-flat
+    layer: the meadow's tall grass, whose long bent blades show it most, was 19 % brighter than
+    its blades here without it (0.505 against 0.424), 6 % with it (on flat ground it is 2-4 %
+    brighter: scripts/facing_check.py)."""
     import dataclasses
     import math
 
     from app.scenes import CameraSpec
 
     scene = get_scene("bench")
-    params = get_scene("meadow").params.replace(  # the meadow's grass: fewer blades
+    meadow = get_scene("meadow")  # its grasses: fewer blades than the presets
+    base = meadow.params if grass is None else meadow.grass[0].params
+    params = base.replace(
         root_color=(1.0, 1.0, 1.0), tip_color=(1.0, 1.0, 1.0), blade_color_variation=0.0
     )
 
@@ -196,7 +206,7 @@ def test_volume_lights_upright_blades_on_a_slope_like_the_blades(headless):
     )  # fmt: skip
     window = (slice(70, 110), slice(100, 220))
     diffuse = {}
-    for mode in ("geometry", "volume"):
+    for drawn in ("geometry", mode):
         seen = {}
         for view, (sun, ambient) in {
             "sun": ((1, 1, 1), (0, 0, 0)),
@@ -207,10 +217,10 @@ def test_volume_lights_upright_blades_on_a_slope_like_the_blades(headless):
                 doc.light, sun_color=sun, ambient_color=ambient, soil_color=(0, 0, 0),
                 sky_color=(0, 0, 0), fog_distance=1e6, blade_ao_impact=0.0,
             )  # fmt: skip
-            renderer = headless(doc, mode=mode)
+            renderer = headless(doc, mode=drawn)
             renderer.pipeline.ground.under_grass = (0.0, 0.0, 0.0)
             frame = renderer.render(doc.camera("default"), SIZE, measure=False)[0]
             seen[view] = float(frame[..., 1][window].mean())
-        assert seen["ambient"] > 0.8 * 255, (mode, seen)  # the window is grass
-        diffuse[mode] = seen["sun"] / seen["ambient"]
-    assert abs(diffuse["volume"] / diffuse["geometry"] - 1.0) < 0.05, diffuse
+        assert seen["ambient"] > 0.8 * 255, (drawn, seen)  # the window is grass
+        diffuse[drawn] = seen["sun"] / seen["ambient"]
+    assert abs(diffuse[mode] / diffuse["geometry"] - 1.0) < within, diffuse
