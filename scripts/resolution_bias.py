@@ -46,7 +46,9 @@ def main() -> None:
     for row in range(first, min(last, h), step):
         a = low[row : row + step].mean(axis=(0, 1))
         b = high[row : row + step].mean(axis=(0, 1))
-        print(f"  {row:4d}-{min(row + step, h) - 1:<4d} {a.round(1)}  {b.round(1)}  {(a - b).round(1)}")
+        print(
+            f"  {row:4d}-{min(row + step, h) - 1:<4d} {a.round(1)}  {b.round(1)}  {(a - b).round(1)}"
+        )
 
 
 if __name__ == "__main__":
