@@ -158,27 +158,6 @@ def slope_means(
     return upright, sheared
 
 
-def slope_ratio(
-    normals: np.ndarray,
-    positions: np.ndarray,
-    roots: np.ndarray,
-    canopy: Canopy,
-    light_dir: np.ndarray,
-    translucency: float,
-    azimuths: int = AZIMUTHS,
-    elevations: int = ELEVATIONS,
-    slopes: int = SLOPES,
-    sample: int = 3000,
-) -> np.ndarray:
-    """(slopes, elevations, azimuths) float32: slope_means' upright over sheared at the table's
-    directions, each layer at elevation over the ground = the direction's + the layer's offset
-    (slope_offsets); 1 on flat ground (the middle layer)."""
-    return slope_tables(
-        normals, positions, roots, canopy, light_dir, translucency,
-        azimuths, elevations, slopes, sample,
-    )[..., 0]  # fmt: skip
-
-
 def slope_tables(
     normals: np.ndarray,
     positions: np.ndarray,
@@ -191,7 +170,8 @@ def slope_tables(
     slopes: int = SLOPES,
     sample: int = 3000,
 ) -> np.ndarray:
-    """(slopes, elevations, azimuths, 2) float32 over slope_ratio's layers: [..., 0] upright
+    """(slopes, elevations, azimuths, 2) float32, each layer at elevation over the ground = the
+    direction's + the layer's offset (slope_offsets): [..., 0] upright
     blades over sheared ones (the volume's slices, sheared with the ground), [..., 1] upright
     blades on the slope over upright blades on flat ground seen from the same direction (the
     image-based grass, whose light is the flat ground's facing table); 1 on flat ground."""

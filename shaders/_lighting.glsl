@@ -34,7 +34,7 @@ float facing_lambert(vec3 to_eye) {
 }
 
 // Upright blades on sloping ground against the slices, which are sheared with it (core/
-// facing.py slope_ratio, render/facing.py): the factor on a far representation's diffuse light
+// facing.py slope_tables, render/facing.py): the factor on a far representation's diffuse light
 // seen from to_eye at elevation theta over the ground (radians); 1 on flat ground. The table's
 // layers hold elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1.
 uniform bool u_slopes;

@@ -178,8 +178,9 @@ void main() {
     float side_spread = level_value(u_side_spread, lod);
     float facing = facing_lambert(-d);  // the blades' mean diffuse factor seen along the ray
     // The slices are sheared with the ground, the blades stand upright on it: on a slope the
-    // light differs by the ratio of the two (core/facing.py slope_ratio), at the ray's elevation
-    // over the ground where it enters (tan θ = (u · n) / (n_y |u_xz|), as in image.glsl).
+    // light differs by the ratio of the two (core/facing.py slope_tables, its first layer), at
+    // the ray's elevation over the ground where it enters (tan θ = (u · n) / (n_y |u_xz|), as
+    // in image.glsl).
     vec2 slope = vec2(
         ground_density(design_uv(v_config, e.xz + vec2(1.0, 0.0))).x
             - ground_density(design_uv(v_config, e.xz - vec2(1.0, 0.0))).x,

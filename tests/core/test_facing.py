@@ -73,7 +73,7 @@ def _uniform_canopy(height: float = 1.0):
 
 
 def test_slope_ratios_are_one_on_flat_ground():
-    from core.facing import SLOPES, slope_ratio, slope_tables
+    from core.facing import SLOPES, slope_tables
 
     rng = np.random.default_rng(5)
     normals = rng.normal(size=(400, 3))
@@ -81,40 +81,18 @@ def test_slope_ratios_are_one_on_flat_ground():
     positions = np.column_stack([roots[:, 0], rng.uniform(0, 1, 400), roots[:, 1]])
     positions[:, [0, 2]] += rng.normal(scale=0.1, size=(400, 2))
     light = np.array([0.3, 0.8, -0.5]) / np.linalg.norm([0.3, 0.8, -0.5])
-    table = slope_ratio(normals, positions, roots, _uniform_canopy(), light, 0.3)
-    assert table.shape == (SLOPES, 8, 32)
-    np.testing.assert_allclose(table[SLOPES // 2], 1.0, atol=1e-5)
-    both = slope_tables(normals, positions, roots, _uniform_canopy(), light, 0.3)
-    assert both.shape == (SLOPES, 8, 32, 2)
-    np.testing.assert_array_equal(both[..., 0], table)  # the volume's, as slope_ratio
-    np.testing.assert_allclose(both[SLOPES // 2, ..., 1], 1.0, atol=1e-5)
-    assert np.abs(both[..., 1] - 1.0).max() > 0.02  # the image-based grass's moves off flat
+    table = slope_tables(normals, positions, roots, _uniform_canopy(), light, 0.3)
+    assert table.shape == (SLOPES, 8, 32, 2)
+    np.testing.assert_allclose(table[SLOPES // 2], 1.0, atol=1e-5)  # both layers
+    assert (np.abs(table - 1.0).max(axis=(0, 1, 2)) > 0.02).all()  # and both move off flat
 
 
 def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
     """Seen from -z, tips leaning away from the eye face the sky (lit by a sun overhead), tips
     leaning towards it face sideways (lit edge-on: dark). Where the ground rises away from the
     eye, the tips leaning up the slope come close to it and hide: upright blades are darker than
-    blades sheared with the ground (ratio < 1); where it falls away, brighter (> 1)."""
-    from core.facing import SLOPES, slope_ratio
-
-    k = 200
-    roots = np.zeros((2 * k, 2))
-    up, side = [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]
-    normals = np.array([up] * k + [side] * k)
-    positions = np.array([[0.0, 0.5, 0.3]] * k + [[0.0, 0.5, -0.3]] * k)  # away, towards
-    table = slope_ratio(normals, positions, roots, _uniform_canopy(), np.array([0, 1.0, 0]), 0.0)
-    towards_minus_z = 15  # a column beside azimuth 180 degrees (174.4): the eye at -z
-    low = table[:, 1, towards_minus_z]  # the second row: ~17 degrees over the horizon
-    assert low[SLOPES // 2] == 1.0
-    assert (low[SLOPES // 2 + 1 :] < 0.97).all(), low  # rising away: darker
-    assert (low[: SLOPES // 2] > 1.03).all(), low  # falling away: brighter
-
-
-def test_upright_blades_on_a_slope_against_flat_ground_hide_their_tips_uphill():
-    """The image-based grass is lit as on flat ground. Seen from -z, blades whose lit parts lean
-    up a slope that rises away from the eye come close to the ground there and are reached less
-    than on flat ground (darker: < 1), more where it falls away (brighter: > 1)."""
+    blades sheared with the ground (ratio < 1; the volume's layer) and than upright blades on
+    flat ground (the image-based grass's layer); where it falls away, brighter (> 1)."""
     from core.facing import SLOPES, slope_tables
 
     k = 200
@@ -123,7 +101,9 @@ def test_upright_blades_on_a_slope_against_flat_ground_hide_their_tips_uphill():
     normals = np.array([up] * k + [side] * k)
     positions = np.array([[0.0, 0.5, 0.3]] * k + [[0.0, 0.5, -0.3]] * k)  # away, towards
     table = slope_tables(normals, positions, roots, _uniform_canopy(), np.array([0, 1.0, 0]), 0.0)
-    low = table[:, 1, 15, 1]  # ~17 degrees over the horizon, the eye at -z (as above)
-    assert low[SLOPES // 2] == 1.0
-    assert (low[SLOPES // 2 + 1 :] < 0.97).all(), low
-    assert (low[: SLOPES // 2] > 1.03).all(), low
+    towards_minus_z = 15  # a column beside azimuth 180 degrees (174.4): the eye at -z
+    for layer in (0, 1):
+        low = table[:, 1, towards_minus_z, layer]  # the second row: ~17 degrees over the horizon
+        assert low[SLOPES // 2] == 1.0
+        assert (low[SLOPES // 2 + 1 :] < 0.97).all(), (layer, low)  # rising away: darker
+        assert (low[: SLOPES // 2] > 1.03).all(), (layer, low)  # falling away: brighter
