@@ -170,11 +170,11 @@ def slope_tables(
     slopes: int = SLOPES,
     sample: int = 3000,
 ) -> np.ndarray:
-    """(slopes, elevations, azimuths, 2) float32, each layer at elevation over the ground = the
-    direction's + the layer's offset (slope_offsets): [..., 0] upright
-    blades over sheared ones (the volume's slices, sheared with the ground), [..., 1] upright
-    blades on the slope over upright blades on flat ground seen from the same direction (the
-    image-based grass, whose light is the flat ground's facing table); 1 on flat ground."""
+    """(slopes, elevations, azimuths, 2) float32 at the table's directions, each layer at
+    elevation over the ground = the direction's + the layer's offset (slope_offsets):
+    [..., 0] upright blades over sheared ones (the volume's slices, sheared with the ground),
+    [..., 1] upright blades on the slope over upright blades on flat ground seen from the same
+    direction (the image-based grass, lit by the flat ground's facing table); 1 on flat ground."""
     e = directions(azimuths, elevations).reshape(-1, 3)
     theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
     upright, sheared = slope_means(
