@@ -106,3 +106,13 @@ class SlopeTable:
 
     def release(self) -> None:
         self.texture.release()
+
+
+def bind_slopes(program: moderngl.Program, table: SlopeTable | None, lighting: Lighting) -> None:
+    """Point a far representation's program at its grass type's slope tables (or tell it there
+    are none). The sampler keeps its own unit even without a table: two sampler types on one
+    unit are an invalid operation."""
+    program["u_slope_ratio"].value = SLOPE_UNIT
+    program["u_slopes"].value = table is not None
+    if table is not None:
+        table.use(lighting)

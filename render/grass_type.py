@@ -52,7 +52,8 @@ class GrassTypeRenderer:
         # image-based grass has its own, of the blade parts a view reaches (render/facing.py)
         self.facing = FacingTable(ctx, lambda: self.patch)
         self.image.facing = FacingTable(ctx, lambda: self.patch, self._canopy)
-        # upright blades on slopes against the sheared slices, for the volumes (render/facing.py)
+        # upright blades on slopes against the sheared slices (the volumes) and against flat
+        # ground (the image-based grass): render/facing.py
         self.slope = SlopeTable(ctx, lambda: self.patch, self._canopy)
         self.image.slope = self.slope
         self.lod = LodConfig()

@@ -10,7 +10,7 @@ import numpy as np
 
 from core.canopy import Canopy
 from render.buffers import InstancedRenderer, instance_layout
-from render.facing import FACING_UNIT, SLOPE_UNIT, FacingTable, SlopeTable
+from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
 from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
@@ -144,10 +144,7 @@ class ImageRenderer:
         if self.facing is not None:
             self.facing.use(frame.lighting)
             p["u_facing"].value = FACING_UNIT
-        p["u_slope_ratio"].value = SLOPE_UNIT  # its own unit even without a table (volume.py)
-        p["u_slopes"].value = self.slope is not None
-        if self.slope is not None:
-            self.slope.use(frame.lighting)
+        bind_slopes(p, self.slope, frame.lighting)
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()

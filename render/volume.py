@@ -12,7 +12,7 @@ import moderngl
 import numpy as np
 
 from render.buffers import InstancedRenderer, instance_layout
-from render.facing import FACING_UNIT, SLOPE_UNIT, FacingTable, SlopeTable
+from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
@@ -98,12 +98,7 @@ class VolumeRenderer(InstancedRenderer):
         if self.facing is not None:
             self.facing.use(frame.lighting)
             p["u_facing"].value = FACING_UNIT
-        # (the sampler keeps its own unit even without a table: two sampler types on one
-        # unit are an invalid operation)
-        p["u_slope_ratio"].value = SLOPE_UNIT
-        p["u_slopes"].value = self.slope is not None
-        if self.slope is not None:
-            self.slope.use(frame.lighting)
+        bind_slopes(p, self.slope, frame.lighting)
         for unit, (name, tex) in enumerate(
             [
                 ("u_side_color", t.sides.color),
