@@ -44,6 +44,30 @@ def _vec3(text: str) -> tuple[float, float, float]:
     return x, y, z
 
 
+def _view_height(text: str) -> float | str:
+    if text.lower() in ("none", "off"):
+        return "none"
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"malformed view height {text!r}; expected pixels (16 … 16384) or none"
+        ) from None
+    if not 16 <= value <= 16384:
+        raise argparse.ArgumentTypeError(f"view height {text!r} out of range; 16 … 16384 pixels")
+    return value
+
+
+def _lod_view_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--lod-view-height",
+        type=_view_height,
+        metavar="PIXELS",
+        help="LOD distances of every grass type hold for a view this tall (50° field of view) "
+        "and scale with the view's pixels per radian; none: world units",
+    )
+
+
 def _writable(path: Path) -> Path:
     parent = path.resolve().parent
     if not parent.is_dir():
@@ -62,6 +86,7 @@ def parser() -> argparse.ArgumentParser:
         "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
     )
     r.add_argument("--project", type=Path, help="project file (instead of --scene)")
+    _lod_view_option(r)
     r.add_argument("--camera", help="named camera of the scene")
     r.add_argument("--eye", type=_vec3, help="camera position X,Y,Z (with --target)")
     r.add_argument("--target", type=_vec3, help="point the camera looks at X,Y,Z")
@@ -86,6 +111,7 @@ def parser() -> argparse.ArgumentParser:
     pr = sub.add_parser("profile", help="frame statistics per viewpoint or along a path")
     pr.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
     pr.add_argument("--project", type=Path, help="project file (instead of --scene)")
+    _lod_view_option(pr)
     pr.add_argument("--path", help="camera path of the scene (default: every named camera)")
     pr.add_argument("--frames", type=int, default=None, help="frames per viewpoint or path")
     pr.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
@@ -103,6 +129,7 @@ def parser() -> argparse.ArgumentParser:
     n.add_argument(
         "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
     )
+    _lod_view_option(n)
     n.add_argument(
         "--cells",
         type=_cells,
@@ -123,6 +150,7 @@ def parser() -> argparse.ArgumentParser:
     q = sub.add_parser("quality", help="LOD frame against all-geometry: FLIP, floor, popping")
     q.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
     q.add_argument("--project", type=Path, help="project file (instead of --scene)")
+    _lod_view_option(q)
     q.add_argument(
         "--camera",
         action="append",
@@ -150,18 +178,32 @@ def parser() -> argparse.ArgumentParser:
 
 
 def _document(args: argparse.Namespace):
-    """The project of --project, or else a new one from the built-in --scene."""
+    """The project of --project, or else a new one from the built-in --scene; with
+    --lod-view-height, every grass type's LOD distances set to hold for that view."""
     if getattr(args, "project", None) is not None:
         from core.project_file import ProjectError, load_project
 
         try:
-            return load_project(args.project)
+            document = load_project(args.project)
         except ProjectError as exc:
             raise CliError(str(exc)) from None
-    try:
-        return get_scene(args.scene).document()
-    except KeyError as exc:
-        raise CliError(exc.args[0]) from None
+    else:
+        try:
+            document = get_scene(args.scene).document()
+        except KeyError as exc:
+            raise CliError(exc.args[0]) from None
+    _set_view_height(document, getattr(args, "lod_view_height", None))
+    return document
+
+
+def _set_view_height(document, value: float | str | None) -> None:
+    if value is None:
+        return
+    import dataclasses
+
+    height = None if value == "none" else float(value)
+    for index in range(len(document.grass_types)):
+        document.set_lod(index, dataclasses.replace(document.lod(index), view_height=height))
 
 
 def _known_camera(document, name: str) -> None:
@@ -190,6 +232,7 @@ def cmd_new(args: argparse.Namespace) -> int:
             raise CliError(exc.args[0]) from None
         except ValueError as exc:
             raise CliError(f"--cells: {exc}") from None
+        _set_view_height(document, args.lod_view_height)
     if args.height_map is not None or args.height_scale is not None:
         _import_heights(document, args.height_map, args.height_scale)
     _writable(args.file)

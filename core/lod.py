@@ -9,12 +9,15 @@ every blade is visible exactly once.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 REPRESENTATIONS = ("geometry", "volume", "image")
+REFERENCE_FOV = 50.0  # degrees: the field of view a LodConfig's view_height is taken at
 ALL_IN = 2.0  # w for a cell wholly inside one zone: every blade passes eq. 5.26's window
 
 
@@ -113,9 +116,16 @@ class LodConfig:
     # thesis 6.4.6: image-based cells whose grass reaches above the eye are drawn by the last
     # volume level as well, so hilltops keep their silhouette
     silhouettes: bool = False
+    # None: the distances are world units for any view. A number: they hold for a view this
+    # many pixels tall at REFERENCE_FOV; a view with more pixels per radian (taller, or
+    # zoomed in) draws every zone farther out in proportion (`for_view`), so a representation
+    # is used where its detail is as many pixels wide as the level was tuned for.
+    view_height: float | None = None
 
     def __post_init__(self) -> None:
         levels = self.levels
+        if self.view_height is not None and not 16 <= self.view_height <= 16384:
+            raise ValueError("LOD view height must be 16 … 16384 pixels (or none)")
         if not levels:
             raise ValueError("a LOD configuration needs at least one level")
         if not 0 <= self.epsilon < 0.5:
@@ -166,6 +176,31 @@ class LodConfig:
 
     def representations(self) -> list[str]:
         return [level.representation for level in self.levels]
+
+    def view_scale(self, viewport_height: float, fov_y: float) -> float:
+        """How much farther every zone lies in a view `viewport_height` pixels tall with a
+        vertical field of view `fov_y` (degrees): its pixels per radian over those of the
+        view the distances were set for; 1 where the distances are world units."""
+        if self.view_height is None:
+            return 1.0
+        focal = viewport_height / math.tan(math.radians(fov_y) / 2.0)
+        return focal / (self.view_height / math.tan(math.radians(REFERENCE_FOV) / 2.0))
+
+    def for_view(self, viewport_height: float, fov_y: float) -> LodConfig:
+        """The levels with world-unit distances for this view (`view_scale`); macro-cell
+        limits, slices and unplanarity stay as they are."""
+        scale = self.view_scale(viewport_height, fov_y)
+        if scale == 1.0:
+            return self
+        levels = tuple(
+            dataclasses.replace(
+                level,
+                begin=level.begin * scale,
+                end=None if level.end is None else level.end * scale,
+            )
+            for level in self.levels
+        )
+        return dataclasses.replace(self, levels=levels, view_height=None)
 
 
 def classify(d: np.ndarray, config: LodConfig) -> list[tuple[np.ndarray, np.ndarray]]:

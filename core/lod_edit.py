@@ -24,6 +24,12 @@ def set_field(config: LodConfig, index: int, name: str, value) -> LodConfig:
     return with_levels(config, levels)
 
 
+def set_view_height(config: LodConfig, pixels: float) -> LodConfig:
+    """The view height the distances hold for (core/lod.py LodConfig.view_height); 0: none,
+    the distances are world units."""
+    return dataclasses.replace(config, view_height=float(pixels) if pixels else None)
+
+
 def append_level(config: LodConfig) -> LodConfig:
     """A new last level beyond the current last one, which now ends where the new one has
     fully taken over; the new level draws what the last one drew."""

@@ -62,6 +62,7 @@ def _lod(config: LodConfig) -> dict:
         "levels": [dataclasses.asdict(level) for level in config.levels],
         "epsilon": config.epsilon,
         "silhouettes": config.silhouettes,
+        "view_height": config.view_height,
     }
 
 
@@ -70,6 +71,7 @@ def _lod_from(data: dict) -> LodConfig:
         tuple(LodLevel(**level) for level in data["levels"]),
         data.get("epsilon", 0.05),
         data.get("silhouettes", False),
+        data.get("view_height"),
     )
 
 

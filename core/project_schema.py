@@ -70,6 +70,8 @@ class Lod(msgspec.Struct, forbid_unknown_fields=True):
     levels: Annotated[list[Level], Meta(min_length=1, max_length=MAX_LEVELS)]
     epsilon: Annotated[float, Meta(ge=0.0, le=1.0)] = 0.05
     silhouettes: bool = False
+    # the view height (pixels) the distances hold for; none: world units (core/lod.py)
+    view_height: Annotated[float, Meta(ge=16.0, le=16384.0)] | None = None
 
 
 class Grass(msgspec.Struct, forbid_unknown_fields=True):

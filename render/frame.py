@@ -343,7 +343,7 @@ class FramePipeline:
         cells = [
             draw_list(
                 mode,
-                grass.lod,
+                grass.lod.for_view(h, camera.fov_y),
                 camera.eye,
                 self.terrain,
                 self._instances,

@@ -26,7 +26,12 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     path = tmp_path / "meadow.sward"
     doc = meadow.document()
     doc.maps.write("color", 10, 10, np.full((5, 5, 4), 0.25))  # something painted
-    doc.set_lod(0, LodConfig((LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8))))
+    doc.set_lod(
+        0,
+        LodConfig(
+            (LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8)), view_height=540
+        ),
+    )
     doc.light = Lighting(sun_elevation=20.0, sun_azimuth=300.0, ambient_color=(0.2, 0.3, 0.4))
     doc.slices = doc.slices.replace(slices=4, top=256)
     save_project(path, doc)
@@ -69,6 +74,7 @@ def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
         tmp_path / "badlight.sward", data, maps, lambda d: d.update(light={"sun_elevation": 400})
     )
     variant(tmp_path / "nolod.sward", data, maps, lambda d: d.pop("lod"))
+    variant(tmp_path / "badview.sward", data, maps, lambda d: d["lod"].update(view_height=4))
     expected = {
         "text.sward": "not a zip file",
         "truncated.sward": "",
@@ -76,6 +82,7 @@ def test_bad_files_are_refused_with_their_name_and_reason(tmp_path, meadow):
         "badparam.sward": "params.blade_count: expected `int` >= 1",
         "badlight.sward": "light.sun_elevation: expected `float` <= 90",
         "nolod.sward": "missing required field `lod`",
+        "badview.sward": "lod.view_height: expected `float` >= 16",
     }
     for name, reason in expected.items():
         with pytest.raises(ProjectError, match=name) as info:

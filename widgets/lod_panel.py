@@ -14,6 +14,7 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QLabel,
     QPushButton,
+    QSpinBox,
     QTableWidget,
     QTableWidgetItem,
     QVBoxLayout,
@@ -22,7 +23,7 @@ from PySide6.QtWidgets import (
 
 from core.document import Document
 from core.lod import REPRESENTATIONS, LodConfig
-from core.lod_edit import append_level, move_level, remove_level, set_field
+from core.lod_edit import append_level, move_level, remove_level, set_field, set_view_height
 from core.params import SLICE_COUNTS
 from core.stats import FrameStats
 
@@ -66,6 +67,18 @@ class LodPanel(QWidget):
         self.remove_button.clicked.connect(lambda: self._edit(remove_level, self._row()))
         self.up_button.clicked.connect(lambda: self._move(-1))
         self.down_button.clicked.connect(lambda: self._move(1))
+        self.view_box = QSpinBox(minimum=0, maximum=16384, singleStep=10)
+        self.view_box.setSpecialValueText("world units")
+        self.view_box.setSuffix(" px tall")
+        self.view_box.setKeyboardTracking(False)  # a typed number applies on Enter
+        self.view_box.setToolTip(
+            "The distances hold for a view this many pixels tall (50° field of view); a taller "
+            "or zoomed-in view draws every zone farther out in proportion. 0: world units."
+        )
+        self.view_box.valueChanged.connect(lambda v: self._edit(set_view_height, v))
+        view_row = QHBoxLayout()
+        view_row.addWidget(QLabel("Distances for a view"))
+        view_row.addWidget(self.view_box, 1)
         self.zones_box = QCheckBox("Show zones on the terrain (Z)")
         self.zones_box.toggled.connect(self.zones_toggled)
         self.message = QLabel()
@@ -74,6 +87,7 @@ class LodPanel(QWidget):
         layout.addWidget(self.type_box)
         layout.addWidget(self.table, 1)
         layout.addLayout(buttons)
+        layout.addLayout(view_row)
         layout.addWidget(self.zones_box)
         layout.addWidget(self.message)
         document.events.lod.connect(self._on_lod_changed)
@@ -138,6 +152,9 @@ class LodPanel(QWidget):
             macro.setEnabled(level.representation != "geometry")
             for w in (rep, slices, begin, end, macro):
                 w.blockSignals(False)
+        self.view_box.blockSignals(True)
+        self.view_box.setValue(round(self.config.view_height or 0))
+        self.view_box.blockSignals(False)
         self.table.resizeColumnsToContents()
         self.table.selectRow(min(row, len(levels) - 1))
 

@@ -174,7 +174,8 @@ class GrassViewport(QWidget):
     def _send_request(self) -> None:
         self._pending = False
         if self.show_zones:
-            rings = zone_rings(self.document.terrain, self.camera.eye, self.document.lod(0).levels)
+            lod = self.document.lod(0).for_view(self._size()[1], self.camera.fov_y)
+            rings = zone_rings(self.document.terrain, self.camera.eye, lod.levels)
             lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
             self.renderer.set_view_state("overlay", "zones", lines)
         self.renderer.request(self.version, self.camera, self._size())

@@ -60,6 +60,7 @@ def lods(draw) -> LodConfig:
         ),
         epsilon=draw(st.floats(0.0, 0.3)),
         silhouettes=draw(st.booleans()),
+        view_height=draw(st.none() | st.floats(16.0, 16384.0)),
     )
 
 

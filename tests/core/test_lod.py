@@ -135,3 +135,47 @@ def test_share_of_many_blades_is_their_mean_opacity():
     for far in (False, True):
         single = share(t, 0.0, 0.5, 0.8, 0.05, far)
         assert np.abs(single - opacity(t, 0.5, 0.8, 0.05, far)).max() < 1e-3
+
+
+def test_distances_set_for_a_view_height_scale_with_the_views_pixels_per_radian():
+    config = LodConfig(
+        (LodLevel("geometry", 0.0, 4.0), LodLevel("volume", 3.0, 9.0), LodLevel("image", 8.0)),
+        view_height=270,
+    )
+    assert config.view_scale(270, 50.0) == pytest.approx(1.0)
+    same = config.for_view(270, 50.0)
+    assert [(lv.begin, lv.end) for lv in same.levels] == [(0, 4), (3, 9), (8, None)]
+    taller = config.for_view(540, 50.0)  # twice the pixels: every zone twice as far
+    assert [lv.begin for lv in taller.levels] == pytest.approx([0, 6, 16])
+    assert [lv.end for lv in taller.levels[:2]] == pytest.approx([8, 18])
+    assert taller.levels[2].end is None
+    assert taller.view_height is None  # world units now: not scaled twice
+    assert config.view_scale(270, 25.0) > 2.0  # zoomed in: more pixels per radian
+    assert config.view_scale(135, 50.0) == pytest.approx(0.5)
+    world = LodConfig(config.levels)  # no view height: world units for any view
+    assert world.for_view(2160, 20.0) is world
+
+
+def test_a_view_height_out_of_range_is_refused():
+    for bad in (0.0, 15.0, 20000.0):
+        with pytest.raises(ValueError, match="view height"):
+            LodConfig(view_height=bad)
+
+
+def test_a_taller_view_selects_geometry_farther_out_as_the_scaled_levels_do():
+    cells = grid_instances(40, 40)
+    eye = (0.0, 2.0, 0.0)
+    config = LodConfig(
+        (LodLevel("geometry", 0.0, 4.0), LodLevel("volume", 3.0, 9.0), LodLevel("image", 8.0)),
+        view_height=300,
+    )
+    small = select(cells, eye, config.for_view(300, 50.0))
+    large = select(cells, eye, config.for_view(900, 50.0))
+    by_hand = LodConfig(
+        (LodLevel("geometry", 0.0, 12.0), LodLevel("volume", 9.0, 27.0), LodLevel("image", 24.0))
+    )
+    expected = select(cells, eye, by_hand)
+    assert len(large[0]) > 4 * len(small[0])
+    for got, want in zip(large, expected, strict=True):
+        assert np.array_equal(got["origin"], want["origin"])
+        assert np.allclose(got["lod"], want["lod"])

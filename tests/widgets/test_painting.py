@@ -157,6 +157,25 @@ def test_editing_a_lod_end_changes_the_counts_in_the_overlay(window, qtbot):
     assert window.document.lod(0).levels[0].end == 4.25
 
 
+def test_distances_set_for_a_smaller_view_draw_more_geometry_and_undo(window, qtbot):
+    vp = window.viewport
+    vp.set_camera(window.document.camera("grazing"))
+    wait_for_slices(window, qtbot)
+    before = vp.last_stats
+    box = window.lod_panel.view_box
+    assert box.text() == "world units" and window.document.lod(0).view_height is None
+    box.selectAll()
+    QTest.keyClicks(box, "120")  # the distances hold for a view 120 px tall: this one is taller
+    QTest.keyClick(box, Qt.Key.Key_Return)
+    assert window.document.lod(0).view_height == 120
+    wait_for_slices(window, qtbot)
+    after = vp.last_stats
+    assert after.c_g > before.c_g and not after.preview
+    window.undo_stack.undo()
+    assert window.document.lod(0).view_height is None
+    assert box.text() == "world units"
+
+
 def test_an_impossible_lod_edit_is_refused_with_the_reason(window, qtbot):
     panel = window.lod_panel
     before = window.document.lod(0)
