@@ -157,7 +157,13 @@ def quality(
 ) -> tuple[str, dict]:
     """Render and compare; the printed table and the JSON document."""
     run = QualityRun(document, size, budget_s)
-    result: dict = {"scene": document.name, "size": list(size), "cameras": []}
+    result: dict = {
+        "scene": document.name,
+        "size": list(size),
+        # per grass type: the view height its LOD distances hold for (None: world units)
+        "lod_view_height": [document.lod(i).view_height for i in range(len(document.grass_types))],
+        "cameras": [],
+    }
     try:
         if path is not None:
             result["path"] = run.path_figures(path, document.path_cameras(path, frames))
@@ -179,7 +185,9 @@ def _f(value, digits: int = 3) -> str:
 
 def report(result: dict) -> str:
     w, h = result["size"]
-    lines = [f"{result['scene']} at {w}x{h}: LOD against all-geometry"]
+    heights = {v for v in result.get("lod_view_height", []) if v is not None}
+    zones = f" (LOD distances for a view {', '.join(f'{v:g}' for v in sorted(heights))} px tall)"
+    lines = [f"{result['scene']} at {w}x{h}: LOD against all-geometry{zones if heights else ''}"]
     for row in result["cameras"]:
         if "lod" not in row:
             lines.append(

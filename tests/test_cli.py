@@ -280,3 +280,25 @@ def test_new_imports_a_16_bit_height_map(tmp_path):
     assert len(r.stderr.strip().splitlines()) == 1
     r = sward("new", str(tmp_path / "x.sward"), "--height-scale", "-1")
     assert r.returncode == 2 and "--height-scale -1 out of range" in r.stderr
+
+
+def test_lod_distances_for_a_view_height_are_saved_and_draw_geometry_farther(tmp_path):
+    path = tmp_path / "p.sward"
+    assert sward("new", str(path), "--scene", "meadow", "--lod-view-height", "300").returncode == 0
+    from core.project_file import load_project
+
+    doc = load_project(path)
+    assert [doc.lod(i).view_height for i in range(len(doc.grass_types))] == [300.0, 300.0]
+    counts = {}
+    for height in ("none", "48"):  # the frame is 96 px tall: zones twice as far with 48
+        stats = tmp_path / f"{height}.json"
+        r = sward(
+            "render", "--project", str(path), "--size", "160x96", "--lod-view-height", height,
+            "--stats", str(stats),
+        )  # fmt: skip
+        assert r.returncode == 0, r.stderr
+        counts[height] = json.loads(stats.read_text())["c_g"]
+    assert counts["48"] > 2 * counts["none"] > 0
+    r = sward("render", "--size", "160x96", "--lod-view-height", "2", "--stats", str(stats))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "view height '2' out of range" in r.stderr
