@@ -106,6 +106,36 @@ def set_lod(doc: Document, index: int, new: LodConfig) -> SetValue:
     return SetValue(text, doc, "lod", doc.lod(index), new, index=index)
 
 
+class SetLods(Command):
+    """Every grass type's LodConfig at once (one undo step): the view height the LOD
+    distances hold for is one setting of the view, whatever the type."""
+
+    def __init__(self, text: str, document: Document, new: list[LodConfig]) -> None:
+        super().__init__(text)
+        self.document = document
+        self.old = [document.lod(i) for i in range(len(document.grass_types))]
+        self.new = list(new)
+
+    def _set(self, configs: list[LodConfig]) -> None:
+        for index, config in enumerate(configs):
+            self.document.set_lod(index, config)
+
+    def apply(self) -> None:
+        self._set(self.new)
+
+    def revert(self) -> None:
+        self._set(self.old)
+
+    def clone(self) -> SetLods:
+        twin = SetLods(self.text(), self.document, self.new)
+        twin.old = list(self.old)
+        return twin
+
+
+def set_lods(doc: Document, new: list[LodConfig], text: str) -> SetLods:
+    return SetLods(text, doc, new)
+
+
 def set_density(doc: Document, new: float) -> SetValue:
     return SetValue("change density", doc, "density", doc.density, new, merge_id=1)
 

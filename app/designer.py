@@ -116,6 +116,9 @@ class DesignerWindow(QMainWindow):
         self.lod_panel.lod_edited.connect(
             lambda i, config: self.push(commands.set_lod(self.document, i, config))
         )
+        self.lod_panel.view_height_edited.connect(
+            lambda configs, text: self.push(commands.set_lods(self.document, configs, text))
+        )
         self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
         self.light_panel.lighting_edited.connect(
             lambda light: self.push(commands.set_light(self.document, light))

@@ -42,6 +42,7 @@ WIDTHS = (
 
 class LodPanel(QWidget):
     lod_edited = Signal(int, object)  # grass type, LodConfig
+    view_height_edited = Signal(object, str)  # every grass type's LodConfig, what changed
     zones_toggled = Signal(bool)
 
     def __init__(self, document: Document, parent=None) -> None:
@@ -72,10 +73,11 @@ class LodPanel(QWidget):
         self.view_box.setSuffix(" px tall")
         self.view_box.setKeyboardTracking(False)  # a typed number applies on Enter
         self.view_box.setToolTip(
-            "The distances hold for a view this many pixels tall (50° field of view); a taller "
-            "or zoomed-in view draws every zone farther out in proportion. 0: world units."
+            "Every grass type's distances hold for a view this many pixels tall (50° field of "
+            "view); a taller or zoomed-in view draws every zone farther out in proportion. "
+            "0: world units."
         )
-        self.view_box.valueChanged.connect(lambda v: self._edit(set_view_height, v))
+        self.view_box.valueChanged.connect(self._view_height)
         view_row = QHBoxLayout()
         view_row.addWidget(QLabel("Distances for a view"))
         view_row.addWidget(self.view_box, 1)
@@ -199,6 +201,19 @@ class LodPanel(QWidget):
     # -- widgets -> edits --------------------------------------------------------------------
     def _field(self, index: int, name: str, value) -> None:
         self._edit(set_field, index, name, value)
+
+    def _view_height(self, pixels: int) -> None:
+        """One view height for every grass type: the distances of all of them hold for it."""
+        doc = self.document
+        try:
+            configs = [set_view_height(doc.lod(i), pixels) for i in range(len(doc.grass_types))]
+        except ValueError as exc:
+            self.message.setText(str(exc))
+            QTimer.singleShot(0, self.refresh)
+            return
+        self.message.clear()
+        what = f"a view {pixels} px tall" if pixels else "world units"
+        self.view_height_edited.emit(configs, f"LOD distances for {what}")
 
     def _move(self, step: int) -> None:
         row = self._row()

@@ -176,6 +176,37 @@ def test_distances_set_for_a_smaller_view_draw_more_geometry_and_undo(window, qt
     assert box.text() == "world units"
 
 
+def test_one_view_height_sets_every_grass_types_distances_in_one_undo_step(qtbot):
+    from PySide6.QtGui import QUndoStack
+
+    from app import commands
+    from app.scenes import get_scene
+    from widgets.lod_panel import LodPanel
+
+    doc = get_scene("meadow").document()  # main grass and tall grass
+    panel = LodPanel(doc)
+    qtbot.addWidget(panel)
+    stack = QUndoStack()
+    panel.view_height_edited.connect(
+        lambda configs, text: stack.push(commands.set_lods(doc, configs, text))
+    )
+    levels = [doc.lod(i).levels for i in range(2)]
+    panel.view_box.selectAll()
+    QTest.keyClicks(panel.view_box, "540")
+    QTest.keyClick(panel.view_box, Qt.Key.Key_Return)
+    assert [doc.lod(i).view_height for i in range(2)] == [540.0, 540.0]
+    assert [doc.lod(i).levels for i in range(2)] == levels  # the distances as they were set
+    assert stack.count() == 1 and "540 px" in stack.undoText()
+    panel.view_box.selectAll()
+    QTest.keyClicks(panel.view_box, "9")  # below 16 pixels: refused with the rule
+    QTest.keyClick(panel.view_box, Qt.Key.Key_Return)
+    assert "16" in panel.message.text() and stack.count() == 1
+    qtbot.waitUntil(lambda: panel.view_box.value() == 540)
+    stack.undo()
+    assert [doc.lod(i).view_height for i in range(2)] == [None, None]
+    assert panel.view_box.text() == "world units"
+
+
 def test_an_impossible_lod_edit_is_refused_with_the_reason(window, qtbot):
     panel = window.lod_panel
     before = window.document.lod(0)
