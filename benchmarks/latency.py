@@ -9,7 +9,8 @@ undo — while frames are being drawn. Reports:
 - time from an input to the first frame that shows it (goal: median <= 250 ms), and to the
   first full-quality frame that shows it.
 
-Run: `sward bench --suite latency --out results.json`. Without a display it starts Xvfb; the
+Run: `sward bench --suite latency --out results.json` (with SWARD_LATENCY_VIEW_HEIGHT=PIXELS the
+meadow's LOD distances hold for a view that tall: core/lod.py). Without a display it starts Xvfb; the
 window runs in a process of its own, apart from the EGL contexts of other suites. The JSON
 holds each input's figures beside the summaries.
 """

@@ -218,7 +218,15 @@ def main() -> int:
     from app.designer import DesignerWindow
     from app.scenes import DEFAULT_SCENE, get_scene
 
-    window = DesignerWindow(get_scene(DEFAULT_SCENE).document())
+    document = get_scene(DEFAULT_SCENE).document()
+    view_height = os.environ.get("SWARD_LATENCY_VIEW_HEIGHT")  # LOD distances for that view
+    if view_height:
+        import dataclasses
+
+        for i in range(len(document.grass_types)):
+            lod = dataclasses.replace(document.lod(i), view_height=float(view_height))
+            document.set_lod(i, lod)
+    window = DesignerWindow(document)
     window.autosave.directory = Path(settings)
     window.show()
     probe = Probe(app, window)
