@@ -3,7 +3,8 @@
 points where their rays meet the terrain and those points' distances from the eye.
 
     .venv/bin/python scripts/ground_holes.py [--scene meadow | --project FILE]
-        [--camera default] [--size 1024x768] [--only geometry|volume|image]
+        [--camera default | --eye X,Y,Z --target X,Y,Z] [--size 1024x768]
+        [--only geometry|volume|image]
         [--window X0,Y0,X1,Y1]
 
 Prints JSON: the number of magenta pixels in the window and their share of it, and up to 60
@@ -31,6 +32,8 @@ def main() -> None:
     ap.add_argument("--scene", default="meadow")
     ap.add_argument("--project", default=None, help="a project file instead of --scene")
     ap.add_argument("--camera", default="default")
+    ap.add_argument("--eye", default=None, help="X,Y,Z instead of --camera (with --target)")
+    ap.add_argument("--target", default=None, help="X,Y,Z the eye looks at")
     ap.add_argument("--size", default="1024x768")
     ap.add_argument("--only", default="lod", help="geometry, volume or image (default: LOD)")
     ap.add_argument("--window", default=None, help="pixels X0,Y0,X1,Y1 (default: the frame)")
@@ -43,7 +46,13 @@ def main() -> None:
         document = load_project(args.project)
     else:
         document = get_scene(args.scene).document()
-    camera = document.camera(args.camera)
+    if args.eye is not None:
+        from core.camera import Camera
+
+        eye, target = (tuple(float(v) for v in p.split(",")) for p in (args.eye, args.target))
+        camera = Camera.from_eye_target(eye, target)
+    else:
+        camera = document.camera(args.camera)
     with HeadlessRenderer(document, standalone(), mode=args.only) as renderer:
         renderer.pipeline.ground.under_grass = (1.0, 0.0, 1.0)
         renderer.render(camera, (w, h), measure=False)
