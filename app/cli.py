@@ -197,13 +197,10 @@ def _document(args: argparse.Namespace):
 
 
 def _set_view_height(document, value: float | str | None) -> None:
-    if value is None:
-        return
-    import dataclasses
+    if value is not None:
+        from core.lod_edit import set_view_heights
 
-    height = None if value == "none" else float(value)
-    for index in range(len(document.grass_types)):
-        document.set_lod(index, dataclasses.replace(document.lod(index), view_height=height))
+        document.set_lods(set_view_heights(document.lods, 0.0 if value == "none" else value))
 
 
 def _known_camera(document, name: str) -> None:

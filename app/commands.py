@@ -113,18 +113,14 @@ class SetLods(Command):
     def __init__(self, text: str, document: Document, new: list[LodConfig]) -> None:
         super().__init__(text)
         self.document = document
-        self.old = [document.lod(i) for i in range(len(document.grass_types))]
+        self.old = document.lods
         self.new = list(new)
 
-    def _set(self, configs: list[LodConfig]) -> None:
-        for index, config in enumerate(configs):
-            self.document.set_lod(index, config)
-
     def apply(self) -> None:
-        self._set(self.new)
+        self.document.set_lods(self.new)
 
     def revert(self) -> None:
-        self._set(self.old)
+        self.document.set_lods(self.old)
 
     def clone(self) -> SetLods:
         twin = SetLods(self.text(), self.document, self.new)

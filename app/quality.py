@@ -161,7 +161,7 @@ def quality(
         "scene": document.name,
         "size": list(size),
         # per grass type: the view height its LOD distances hold for (None: world units)
-        "lod_view_height": [document.lod(i).view_height for i in range(len(document.grass_types))],
+        "lod_view_height": [lod.view_height for lod in document.lods],
         "cameras": [],
     }
     try:

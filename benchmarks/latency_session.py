@@ -221,11 +221,9 @@ def main() -> int:
     document = get_scene(DEFAULT_SCENE).document()
     view_height = os.environ.get("SWARD_LATENCY_VIEW_HEIGHT")  # LOD distances for that view
     if view_height:
-        import dataclasses
+        from core.lod_edit import set_view_heights
 
-        for i in range(len(document.grass_types)):
-            lod = dataclasses.replace(document.lod(i), view_height=float(view_height))
-            document.set_lod(i, lod)
+        document.set_lods(set_view_heights(document.lods, float(view_height)))
     window = DesignerWindow(document)
     window.autosave.directory = Path(settings)
     window.show()

@@ -169,6 +169,18 @@ class Document:
             self._grass[index] = GrassType(kind.name, kind.params, lod, kind.channel)
             self.events.lod.emit(index, lod)
 
+    @property
+    def lods(self) -> list[LodConfig]:
+        """Every grass type's LodConfig, in the types' order."""
+        return [kind.lod for kind in self._grass]
+
+    def set_lods(self, lods: list[LodConfig]) -> None:
+        """Every grass type's LodConfig at once (one event per type that changes)."""
+        if len(lods) != len(self._grass):
+            raise ValueError(f"{len(lods)} LOD configurations for {len(self._grass)} grass types")
+        for index, lod in enumerate(lods):
+            self.set_lod(index, lod)
+
     # -- simple values -----------------------------------------------------------------------
     @property
     def density(self) -> float:

@@ -30,6 +30,12 @@ def set_view_height(config: LodConfig, pixels: float) -> LodConfig:
     return dataclasses.replace(config, view_height=float(pixels) if pixels else None)
 
 
+def set_view_heights(lods: list[LodConfig], pixels: float) -> list[LodConfig]:
+    """Every grass type's distances set to hold for one view height (0: world units): the
+    view is one, whatever the type (the LOD dock, `--lod-view-height`)."""
+    return [set_view_height(config, pixels) for config in lods]
+
+
 def append_level(config: LodConfig) -> LodConfig:
     """A new last level beyond the current last one, which now ends where the new one has
     fully taken over; the new level draws what the last one drew."""

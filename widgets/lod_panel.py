@@ -23,7 +23,7 @@ from PySide6.QtWidgets import (
 
 from core.document import Document
 from core.lod import REPRESENTATIONS, LodConfig
-from core.lod_edit import append_level, move_level, remove_level, set_field, set_view_height
+from core.lod_edit import append_level, move_level, remove_level, set_field, set_view_heights
 from core.params import SLICE_COUNTS
 from core.stats import FrameStats
 
@@ -204,9 +204,8 @@ class LodPanel(QWidget):
 
     def _view_height(self, pixels: int) -> None:
         """One view height for every grass type: the distances of all of them hold for it."""
-        doc = self.document
         try:
-            configs = [set_view_height(doc.lod(i), pixels) for i in range(len(doc.grass_types))]
+            configs = set_view_heights(self.document.lods, pixels)
         except ValueError as exc:
             self.message.setText(str(exc))
             QTimer.singleShot(0, self.refresh)

@@ -3,7 +3,7 @@
 import pytest
 
 from core.lod import LodConfig
-from core.lod_edit import append_level, move_level, remove_level, set_field
+from core.lod_edit import append_level, move_level, remove_level, set_field, set_view_heights
 
 THREE = LodConfig.zones(geometry_end=4.0, volume_end=12.0, transition=2.0)
 
@@ -38,3 +38,17 @@ def test_an_impossible_end_is_refused_with_the_rule():
     with pytest.raises(ValueError, match="increasing"):
         set_field(THREE, 0, "end", 20.0)  # geometry past the volume level's end
     assert set_field(THREE, 1, "end", 20.0).levels[1].end == 20.0
+
+
+def test_one_view_height_for_every_grass_type_keeps_their_levels():
+    from app.scenes import get_scene
+
+    doc = get_scene("meadow").document()  # two grass types with their own levels
+    levels = [lod.levels for lod in doc.lods]
+    doc.set_lods(set_view_heights(doc.lods, 300))
+    assert [lod.view_height for lod in doc.lods] == [300.0, 300.0]
+    assert [lod.levels for lod in doc.lods] == levels
+    doc.set_lods(set_view_heights(doc.lods, 0))  # 0: world units again
+    assert [lod.view_height for lod in doc.lods] == [None, None]
+    with pytest.raises(ValueError, match="2 grass types"):
+        doc.set_lods(doc.lods[:1])
