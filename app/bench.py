@@ -21,6 +21,7 @@ SUITES = (
     "files",
     "large_terrain",
     "volume_cost",
+    "wind",
 )
 MODULES = {"techniques": "representations"}
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 from pathlib import Path
@@ -58,6 +59,41 @@ def _view_height(text: str) -> float | str:
     return value
 
 
+def _times(text: str) -> list[float]:
+    """SECONDS, or FROM:TO:STEP (both ends included) for a frame sequence."""
+    parts = text.split(":")
+    try:
+        values = [float(v) for v in parts]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"malformed time {text!r}; expected SECONDS or FROM:TO:STEP, e.g. 0:2:0.04"
+        ) from None
+    if len(values) not in (1, 3) or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(
+            f"malformed time {text!r}; expected SECONDS or FROM:TO:STEP, e.g. 0:2:0.04"
+        )
+    if len(values) == 1:
+        start, stop, step = values[0], values[0], 1.0
+    else:
+        start, stop, step = values
+    if not (0.0 <= start <= 1e6 and 0.0 <= stop <= 1e6):
+        raise argparse.ArgumentTypeError(f"time {text!r} out of range; 0 … 1000000 seconds")
+    if step <= 0.0 or stop < start:
+        raise argparse.ArgumentTypeError(f"time {text!r}: STEP must be > 0 and TO ≥ FROM")
+    count = math.floor((stop - start) / step + 1e-9) + 1
+    if count > 10_000:
+        raise argparse.ArgumentTypeError(f"time {text!r} makes {count} frames; at most 10000")
+    return [start + i * step for i in range(count)]
+
+
+def _wind_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--wind",
+        choices=("on", "off"),
+        help="switch the project's wind on or off (default: as the project has it)",
+    )
+
+
 def _lod_view_option(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--lod-view-height",
@@ -98,20 +134,34 @@ def parser() -> argparse.ArgumentParser:
     )
     r.add_argument(
         "--view",
-        choices=("shaded", "techniques"),
+        choices=("shaded", "techniques", "wind"),
         default="shaded",
-        help="techniques: geometry red, volume yellow, image blue",
+        help="techniques: geometry red, volume yellow, image blue; "
+        "wind: the grass coloured by its lean (red x, green z)",
     )
     r.add_argument("--preset", help="blade preset instead of the scene's patch")
     r.add_argument("--density", type=float, help="global density 0 … 1")
     r.add_argument("--seed", type=int, help="random seed of the patch")
-    r.add_argument("--out", type=Path, help="PNG file to write")
+    r.add_argument(
+        "--out",
+        type=Path,
+        help="PNG file to write; with a time sequence a pattern such as frames/f%%04d.png",
+    )
     r.add_argument("--stats", type=Path, help="JSON file for the frame statistics")
+    r.add_argument(
+        "--time",
+        type=_times,
+        default=[0.0],
+        metavar="SECONDS|FROM:TO:STEP",
+        help="the moment of the wind to draw (default 0), or a sequence of frames",
+    )
+    _wind_option(r)
 
     pr = sub.add_parser("profile", help="frame statistics per viewpoint or along a path")
     pr.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
     pr.add_argument("--project", type=Path, help="project file (instead of --scene)")
     _lod_view_option(pr)
+    _wind_option(pr)
     pr.add_argument("--path", help="camera path of the scene (default: every named camera)")
     pr.add_argument("--frames", type=int, default=None, help="frames per viewpoint or path")
     pr.add_argument("--size", type=_size, default=(1024, 768), help="image size WxH")
@@ -130,6 +180,7 @@ def parser() -> argparse.ArgumentParser:
         "--scene", default=DEFAULT_SCENE, help=f"built-in scene (default {DEFAULT_SCENE})"
     )
     _lod_view_option(n)
+    _wind_option(n)
     n.add_argument(
         "--cells",
         type=_cells,
@@ -151,6 +202,7 @@ def parser() -> argparse.ArgumentParser:
     q.add_argument("--scene", default=DEFAULT_SCENE, help="built-in scene")
     q.add_argument("--project", type=Path, help="project file (instead of --scene)")
     _lod_view_option(q)
+    _wind_option(q)
     q.add_argument(
         "--camera",
         action="append",
@@ -192,8 +244,16 @@ def _document(args: argparse.Namespace):
             document = get_scene(args.scene).document()
         except KeyError as exc:
             raise CliError(exc.args[0]) from None
-    _set_view_height(document, getattr(args, "lod_view_height", None))
+    _overrides(document, args)
     return document
+
+
+def _overrides(document, args: argparse.Namespace) -> None:
+    """--lod-view-height and --wind, where the command has them."""
+    _set_view_height(document, getattr(args, "lod_view_height", None))
+    wind = getattr(args, "wind", None)
+    if wind is not None:
+        document.wind = document.wind.replace(enabled=wind == "on")
 
 
 def _set_view_height(document, value: float | str | None) -> None:
@@ -229,7 +289,7 @@ def cmd_new(args: argparse.Namespace) -> int:
             raise CliError(exc.args[0]) from None
         except ValueError as exc:
             raise CliError(f"--cells: {exc}") from None
-        _set_view_height(document, args.lod_view_height)
+        _overrides(document, args)
     if args.height_map is not None or args.height_scale is not None:
         _import_heights(document, args.height_map, args.height_scale)
     _writable(args.file)
@@ -268,7 +328,8 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise CliError("--eye and --target go together")
     if args.out is None and args.stats is None:
         raise CliError("nothing to write: give --out PNG and/or --stats JSON")
-    for path in (args.out, args.stats):
+    outs = _frame_paths(args.out, len(args.time))
+    for path in (*outs, args.stats):
         if path is not None:
             _writable(path)
     if args.density is not None and not 0.0 <= args.density <= 1.0:
@@ -301,24 +362,50 @@ def cmd_render(args: argparse.Namespace) -> int:
     document.set_params(0, params)
     if args.density is not None:
         document.density = args.density
+    records = []
     with HeadlessRenderer(document, mode=args.only or "lod", view=args.view) as renderer:
-        image, stats = renderer.render(camera, args.size, measure=True)
-
-    if args.out is not None:
-        from PIL import Image
-
-        try:
-            Image.fromarray(image).save(args.out, format="PNG")
-        except OSError as exc:
-            raise CliError(f"cannot write {args.out}: {exc.strerror or exc}") from None
-        print(f"wrote {args.out} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
+        for seconds, out in zip(args.time, outs or [None] * len(args.time), strict=True):
+            renderer.pipeline.time = seconds
+            image, stats = renderer.render(camera, args.size, measure=True)
+            records.append(
+                {**stats.to_dict(), "scene": document.name, "camera": camera_name, "time": seconds}
+            )
+            if out is not None:
+                _save_png(image, out)
+                print(f"wrote {out} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
     if args.stats is not None:
-        data = {**stats.to_dict(), "scene": document.name, "camera": camera_name}
+        data = records[0] if len(records) == 1 else {"frames": records}
         try:
             args.stats.write_text(json.dumps(data, indent=2) + "\n")
         except OSError as exc:
             raise CliError(f"cannot write {args.stats}: {exc.strerror or exc}") from None
     return 0
+
+
+def _frame_paths(out: Path | None, count: int) -> list[Path]:
+    """The PNG of each frame: --out itself for one, its %d pattern filled in for a sequence."""
+    if out is None:
+        return []
+    if count == 1:
+        return [out]
+    try:
+        paths = [Path(str(out) % i) for i in range(count)]
+    except (TypeError, ValueError):
+        raise CliError(
+            f"--out {out}: a time sequence needs a pattern with one %d, e.g. frames/f%04d.png"
+        ) from None
+    if len(set(paths)) != count:
+        raise CliError(f"--out {out}: the pattern gives every frame the same name; use %04d")
+    return paths
+
+
+def _save_png(image, path: Path) -> None:
+    from PIL import Image
+
+    try:
+        Image.fromarray(image).save(path, format="PNG")
+    except OSError as exc:
+        raise CliError(f"cannot write {path}: {exc.strerror or exc}") from None
 
 
 def cmd_profile(args: argparse.Namespace) -> int:

@@ -15,6 +15,7 @@ from core.document import Document
 from core.lighting import Lighting
 from core.lod import LodConfig
 from core.params import PatchParams, SliceParams
+from core.wind import Wind
 
 MEMORY_CAP = 512 * 1024 * 1024  # bytes of paint-stroke texels the history keeps
 
@@ -142,6 +143,15 @@ def set_slices(doc: Document, new: SliceParams) -> SetValue:
 
 def set_light(doc: Document, new: Lighting) -> SetValue:
     return SetValue("change light", doc, "light", doc.light, new, merge_id=2)
+
+
+def set_wind(doc: Document, new: Wind) -> SetValue:
+    text = (
+        "wind on"
+        if new.enabled and not doc.wind.enabled
+        else ("wind off" if doc.wind.enabled and not new.enabled else "change wind")
+    )
+    return SetValue(text, doc, "wind", doc.wind, new, merge_id=3)
 
 
 def set_cameras(doc: Document, new: dict, text: str) -> SetValue:

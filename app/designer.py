@@ -35,6 +35,7 @@ from widgets.paint_panel import PaintPanel
 from widgets.patch_panel import PatchPanel
 from widgets.profile_view import ProfileOverlay, ProfilePanel
 from widgets.viewport import GrassViewport
+from widgets.wind_panel import WindPanel
 
 HEIGHTS_SETTLE_MS = 250  # the terrain follows a changed height map this long after the edit
 
@@ -83,6 +84,8 @@ class DesignerWindow(QMainWindow):
         self.lod_panel = LodPanel(document)
         self.light_panel = LightPanel(document.light)
         self.light_dock = self._dock("Light", self.light_panel, "light-dock")
+        self.wind_panel = WindPanel(document.wind)
+        self.wind_dock = self._dock("Wind", self.wind_panel, "wind-dock")
         self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock")
         self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock")
         self.overlay = ProfileOverlay(self.viewport)
@@ -95,6 +98,7 @@ class DesignerWindow(QMainWindow):
         self.tabifyDockWidget(self.patch_dock, self.paint_dock)
         self.tabifyDockWidget(self.paint_dock, self.lod_dock)
         self.tabifyDockWidget(self.lod_dock, self.light_dock)
+        self.tabifyDockWidget(self.light_dock, self.wind_dock)
         self.tabifyDockWidget(self.history_dock, self.profile_dock)
         self.tabifyDockWidget(self.profile_dock, self.map_dock)
         self.history_dock.raise_()
@@ -123,6 +127,9 @@ class DesignerWindow(QMainWindow):
         self.light_panel.lighting_edited.connect(
             lambda light: self.push(commands.set_light(self.document, light))
         )
+        self.wind_panel.wind_edited.connect(
+            lambda wind: self.push(commands.set_wind(self.document, wind))
+        )
         self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
         self.profile_panel.recorded.connect(self._save_recording)
         self.viewport.status_changed.connect(self._on_renderer_status)
@@ -140,10 +147,12 @@ class DesignerWindow(QMainWindow):
     def _bind_document(self, document: Document) -> None:
         """The window's own views of the document (the others bind themselves)."""
         document.events.light.connect(self.light_panel.show_lighting)
+        document.events.wind.connect(self.wind_panel.show_wind)
         document.events.cameras.connect(self._on_cameras_changed)
 
     def _unbind_document(self, document: Document) -> None:
         document.events.light.disconnect(self.light_panel.show_lighting)
+        document.events.wind.disconnect(self.wind_panel.show_wind)
         document.events.cameras.disconnect(self._on_cameras_changed)
 
     def _dock(self, title: str, widget, name: str) -> QDockWidget:
@@ -173,9 +182,15 @@ class DesignerWindow(QMainWindow):
             self.lod_panel.set_document(document)
             self.paint_panel.set_grass_names(document.grass_names)
             self.light_panel.show_lighting(document.light)
+            self.wind_panel.show_wind(document.wind)
             fill_camera_menu(self)
         finally:
             QApplication.restoreOverrideCursor()
+
+    def set_wind_blowing(self, on: bool) -> None:
+        """Wind on or off (View → Wind blows): one undo step, the Wind dock follows."""
+        if on != self.document.wind.enabled:
+            self.push(commands.set_wind(self.document, self.document.wind.replace(enabled=on)))
 
     def bookmark_view(self, name: str | None = None) -> bool:
         """Keep the current view as a named camera of the project (saved with it)."""

@@ -95,8 +95,21 @@ def build_menus(w) -> None:
         "difference shown as a heat map, with its figures in the status line"
     )
     view.addAction(w.quality_action)
+    w.wind_action = _action(w, "&Wind blows", "Ctrl+Shift+W", w.set_wind_blowing, checkable=True)
+    w.wind_action.setToolTip("animate the grass in the project's wind (the Wind dock sets it)")
+    w.wind_action.setChecked(w.document.wind.enabled)
+    w.wind_panel.enabled_box.toggled.connect(w.wind_action.setChecked)
+    view.addAction(w.wind_action)
     view.addSeparator()
-    docks = (w.patch_dock, w.paint_dock, w.lod_dock, w.light_dock, w.map_dock, w.history_dock)
+    docks = (
+        w.patch_dock,
+        w.paint_dock,
+        w.lod_dock,
+        w.light_dock,
+        w.wind_dock,
+        w.map_dock,
+        w.history_dock,
+    )
     for dock in (*docks, w.profile_dock):
         view.addAction(dock.toggleViewAction())
 

@@ -24,6 +24,7 @@ from core.params import PatchParams, SliceParams
 from core.paths import sample_path
 from core.props import boxes
 from core.terrain import Terrain
+from core.wind import Wind
 
 MAIN_GRASS = "main grass"  # the first grass type's name (density channel 0)
 
@@ -94,6 +95,7 @@ class DocumentEvents(SignalGroup):
     density = Signal(float)
     slices = Signal(object)  # SliceParams
     light = Signal(object)  # Lighting
+    wind = Signal(object)  # Wind
     cameras = Signal(object)  # dict name -> CameraSpec
     terrain = Signal(object)  # Terrain, rebuilt after the height map changed
 
@@ -114,6 +116,7 @@ class Document:
         default_camera: str = "default",
         paths: dict[str, tuple[CameraSpec, ...]] | None = None,
         props: tuple[Prop, ...] = (),
+        wind: Wind | None = None,
     ) -> None:
         if not 1 <= len(grass_types) <= 4:
             raise ValueError(f"a project has 1 … 4 grass types, not {len(grass_types)}")
@@ -132,6 +135,7 @@ class Document:
         self.density = density
         self._slices = slices or SliceParams()
         self._light = light or Lighting()
+        self._wind = wind or Wind()
         self._cameras = cameras
         self.default_camera = default_camera
         self.paths = dict(paths or {})
@@ -218,6 +222,19 @@ class Document:
         if value != self._light:
             self._light = value
             self.events.light.emit(value)
+
+    @property
+    def wind(self) -> Wind:
+        """The wind over the terrain (core/wind.py)."""
+        return self._wind
+
+    @wind.setter
+    def wind(self, value: Wind) -> None:
+        if not isinstance(value, Wind):
+            raise TypeError("wind must be a Wind")
+        if value != self._wind:
+            self._wind = value
+            self.events.wind.emit(value)
 
     @property
     def cameras(self) -> dict[str, CameraSpec]:
@@ -348,4 +365,5 @@ class Document:
             self.default_camera,
             self.paths,
             self.props,
+            self._wind,
         )

@@ -23,6 +23,11 @@ VERTEX_DTYPE = np.dtype(
         ("color", np.float32, 3),
         ("root", np.float32, 2),
         ("threshold", np.float32),
+        # the blade's trajectory as a quadratic Bézier curve from its root: the control points
+        # b / 2 and b + g of eq. 4.1 (in the patch's units, fitted in height like the vertices);
+        # the wind bends the curve (core/wind.py, shaders/_wind.glsl)
+        ("ctrl1", np.float32, 3),
+        ("ctrl2", np.float32, 3),
     ]
 )
 
@@ -74,10 +79,14 @@ def generate_patch(params: PatchParams) -> GrassPatch:
 
     # Fit into the patch's bounding box: a tip above patch_height is scaled down in y only.
     p[..., 1] = np.maximum(p[..., 1], 0.0)
+    ctrl1, ctrl2 = 0.5 * b, b + g  # B(t) = 2t(1 - t) ctrl1 + t² ctrl2 = b t + g t²
     tallest = float(p[..., 1].max()) if n else 0.0
     if tallest > params.patch_height:
-        p[..., 1] *= params.patch_height / tallest
-        v[..., 1] *= params.patch_height / tallest
+        fit = params.patch_height / tallest
+        p[..., 1] *= fit
+        v[..., 1] *= fit
+        ctrl1[:, 1] *= fit
+        ctrl2[:, 1] *= fit
         tallest = params.patch_height
 
     # Side vector is horizontal and perpendicular to the blade's facing; the normal is
@@ -103,6 +112,8 @@ def generate_patch(params: PatchParams) -> GrassPatch:
     verts["color"] = _vertex_colors(params, blade_mod, vertex_mod, t)[:, :, None, :]
     verts["root"] = roots[:, None, None, :]
     verts["threshold"] = thresholds[:, None, None]
+    verts["ctrl1"] = ctrl1[:, None, None, :]
+    verts["ctrl2"] = ctrl2[:, None, None, :]
 
     return GrassPatch(
         params=params,

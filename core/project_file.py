@@ -28,6 +28,7 @@ from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, Ter
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.params import ParameterError, PatchParams, SliceParams
+from core.wind import Wind
 
 FORMAT = "sward-project"
 VERSION = 1
@@ -151,6 +152,7 @@ def document_data(doc: Document) -> dict:
         "fog_distance": doc.light.fog_distance,
         "light": _light(doc.light),
         "slices": dataclasses.asdict(doc.slices),
+        "wind": doc.wind.to_dict(),
     }
 
 
@@ -181,6 +183,7 @@ def document_from_data(data: dict, stack: np.ndarray, copy: bool = True) -> Docu
             for name, keys in data.get("paths", {}).items()
         },
         props=tuple(_prop_from(row) for row in data.get("props", [])),
+        wind=Wind.from_dict(data.get("wind", {})),
     )
 
 

@@ -117,6 +117,18 @@ class Light(msgspec.Struct, forbid_unknown_fields=True):
     blade_ao_height: Annotated[float, Meta(gt=0.0, le=100.0)] = 0.3
 
 
+class Wind(msgspec.Struct, forbid_unknown_fields=True):
+    """core/wind.py Wind, whose ranges these are."""
+
+    enabled: bool = False
+    direction: Annotated[float, Meta(ge=-360.0, le=360.0)] = 30.0
+    speed: Annotated[float, Meta(ge=0.0, le=30.0)] = 2.0
+    gust_strength: Annotated[float, Meta(ge=0.0, le=0.9)] = 0.35
+    gust_scale: Annotated[float, Meta(ge=0.5, le=200.0)] = 8.0
+    turbulence_strength: Annotated[float, Meta(ge=0.0, le=0.5)] = 0.08
+    turbulence_scale: Annotated[float, Meta(ge=0.1, le=50.0)] = 1.5
+
+
 class Slices(msgspec.Struct, forbid_unknown_fields=True):
     slices: Annotated[int, Meta(ge=1, le=32)] = 8
     width: Annotated[int, Meta(ge=16, le=2048)] = 256
@@ -151,6 +163,7 @@ class Project(msgspec.Struct, forbid_unknown_fields=True):
     fog_distance: Annotated[float, Meta(gt=0.0, le=1.0e7)] = 160.0
     light: Light = msgspec.field(default_factory=Light)
     slices: Slices = msgspec.field(default_factory=Slices)
+    wind: Wind = msgspec.field(default_factory=Wind)
 
     def __post_init__(self) -> None:
         if self.default_camera not in self.cameras:

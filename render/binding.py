@@ -12,6 +12,7 @@ from core.lod import LodConfig
 from core.params import PatchParams, SliceParams
 from core.patch import generate_patch
 from core.terrain import Terrain
+from core.wind import Wind
 from render.frame import FramePipeline
 
 
@@ -26,6 +27,7 @@ class DocumentBinding:
             "slices": self._on_slices,
             "light": self._on_light,
             "terrain": self._on_terrain,
+            "wind": self._on_wind,
         }
         self._fully_synchronize()
         for name, handler in self._handlers.items():
@@ -39,6 +41,7 @@ class DocumentBinding:
         p.set_design_maps(d.maps)
         p.set_props(d.prop_boxes())
         p.lighting = d.light
+        p.wind = d.wind
         p.set_density(d.density)
         for index, grass in enumerate(d.grass_types):
             p.set_patch(index, generate_patch(grass.params))
@@ -62,6 +65,9 @@ class DocumentBinding:
 
     def _on_light(self, light: Lighting) -> None:
         self.pipeline.lighting = light
+
+    def _on_wind(self, wind: Wind) -> None:
+        self.pipeline.wind = wind
 
     def _on_terrain(self, terrain: Terrain) -> None:
         self.pipeline.set_terrain(terrain)

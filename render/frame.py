@@ -27,6 +27,7 @@ from core.patch import GrassPatch
 from core.stats import FrameStats
 from core.terrain import Terrain
 from core.view_mode import ViewMode
+from core.wind import Wind
 from render.conversion import PatchConverter
 from render.design_maps import DesignMapTextures, union
 from render.geometry import GeometryRenderer
@@ -40,6 +41,7 @@ from render.slices import SliceTextures
 from render.tiling import TilingNoise
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
+from render.wind import WindNoise
 
 
 class FrameAborted(Exception):
@@ -58,7 +60,7 @@ class FramePipeline:
         self.props = PropRenderer(ctx)
         self.overlay = OverlayRenderer(ctx)  # brush outline, LOD rings: drawn last, untimed
         self.mode = ViewMode.GEOMETRY
-        self.view = "shaded"  # shaded | techniques
+        self.view = "shaded"  # shaded | techniques | wind
         self.slice_params = SliceParams()
         # True: slices are converted here, at once, when a mode needs them (command line, tests).
         # The draft render process sets False and converts after its first draft
@@ -77,6 +79,9 @@ class FramePipeline:
         self._instances = np.zeros(0, INSTANCE_DTYPE)
         self.terrain: Terrain | None = None  # set: cells come from the quadtree traversal
         self.tiling = TilingNoise(ctx)  # the terrain's mirror bits per cell, for macro-cells
+        self.wind = Wind()  # the document's (render/binding.py)
+        self.time = 0.0  # seconds: the moment of the wind a frame draws
+        self.wind_noise = WindNoise(ctx)
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
         self.present = Presenter(ctx)
@@ -331,10 +336,13 @@ class FramePipeline:
             eye=camera.eye,
             lighting=self.lighting,
             technique_view=self.view == "techniques",
+            wind_view=self.view == "wind",
             viewport_height=h,
             fov_y=camera.fov_y,
             height_scale=self.terrain.height_scale if self.terrain is not None else 0.0,
             tiling=self.tiling.seed is not None,
+            wind=self.wind,
+            time=self.time,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None
@@ -381,6 +389,7 @@ class FramePipeline:
 
         self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
         self.tiling.use()
+        self.wind_noise.use()
         stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
 
         drawn = []
@@ -443,6 +452,7 @@ class FramePipeline:
         self.map_textures.maps.changed.disconnect(self._on_map_changed)
         self.map_textures.release()
         self.tiling.release()
+        self.wind_noise.release()
         if self._converter is not None:
             self._converter.release()
         for fbo in self._targets.values():

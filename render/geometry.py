@@ -23,6 +23,8 @@ VERTEX_ATTRIBUTES = (
     ("in_color", 3),
     ("in_root", 2),
     ("in_threshold", 1),
+    ("in_ctrl1", 3),
+    ("in_ctrl2", 3),
 )
 
 

@@ -148,6 +148,8 @@ class ImageRenderer:
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()
+        p["u_grass_height"].value = float(self.textures.height)  # the wind's bend (_wind.glsl)
+        p["u_canopy"].value = self.canopy
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
         own, over = self.level_shade(frame.lighting.blade_ao_height)
         p["u_level_shade"].write(np.ascontiguousarray(own, np.float32))

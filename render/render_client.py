@@ -14,10 +14,10 @@ import socket
 import subprocess
 import sys
 import tempfile
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
+from time import monotonic
 
 import numpy as np
 
@@ -197,6 +197,7 @@ class RenderClient:
             "density": lambda v: self._forward("set", "density", v),
             "slices": lambda v: self._forward("set", "slices", v),
             "light": lambda v: self._forward("set", "light", v),
+            "wind": lambda v: self._forward("set", "wind", v),
             "terrain": lambda _t: self._forward("terrain"),
         }
         for name, handler in self._handlers.items():
@@ -270,10 +271,12 @@ class RenderClient:
         self._replay[key] = message
         self._send(message)
 
-    def request(self, version: int, camera, size: tuple[int, int], kind: str = "view") -> None:
+    def request(
+        self, version: int, camera, size: tuple[int, int], kind: str = "view", time: float = 0.0
+    ) -> None:
         """Ask for a frame of the current state: a draft and a full frame (`view`), or only a
         full one (`image`: a screenshot of any size; `quality`: the LOD frame against an
-        all-geometry reference, a heat map and figures)."""
+        all-geometry reference, a heat map and figures); `time`: the moment of the wind."""
         if self._closed:
             return
         self._flush_maps()
@@ -282,7 +285,8 @@ class RenderClient:
             "camera": camera,
             "size": tuple(size),
             "kind": kind,
-            "state_time": time.monotonic(),
+            "time": float(time),
+            "state_time": monotonic(),
         }
         if kind == "view":
             self._last_request = request

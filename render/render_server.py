@@ -111,7 +111,7 @@ class RenderServer:
     def _on_lod(self, index: int, lod) -> None:
         self.document.set_lod(index, lod)
 
-    def _on_set(self, name: str, value) -> None:  # density, slices, light
+    def _on_set(self, name: str, value) -> None:  # density, slices, light, wind
         setattr(self.document, name, value)
 
     def _on_terrain(self) -> None:
@@ -151,6 +151,7 @@ class RenderServer:
             "volume_slices": p.volume.slices,
             "needs_slices": p.needs_slices,
             "lighting": p.lighting,
+            "wind": p.wind,
             "patch_params": [g.patch.params if g.patch else None for g in p.grass_types],
             "height_scale": terrain.height_scale if terrain is not None else 0.0,
             "terrain_top": float(terrain.cell_max.max()) if terrain is not None else 0.0,
@@ -199,6 +200,7 @@ class RenderServer:
         return image, stats, found
 
     def draw(self, request: dict) -> None:
+        self.pipeline.time = request.get("time", 0.0)  # the moment of the wind (viewport.py)
         if request["kind"] == "quality":
             self._draw_quality(request)
             return

@@ -2,18 +2,20 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import moderngl
 import numpy as np
 
 from core.camera import gl_bytes
 from core.lighting import Lighting
+from core.wind import NOISE_FEATURES, Wind
 
 DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
 # units of the height + density textures, one a density channel (DesignMapTextures.grounds)
 GROUND_UNIT = 8
 TILING_UNIT = 5  # the aperiodic tiling's noise map (render/tiling.py)
+WIND_UNIT = 13  # the wind's noise map (render/wind.py)
 
 
 @dataclass
@@ -28,6 +30,9 @@ class FrameUniforms:
     fov_y: float = 50.0  # degrees
     height_scale: float = 0.0  # world units of the height map's 1 (thesis 6.4.4)
     tiling: bool = False  # cells mirrored by the terrain's noise map (render/tiling.py)
+    wind: Wind = field(default_factory=Wind)  # the wind over the terrain (core/wind.py)
+    time: float = 0.0  # seconds: the moment of the wind drawn
+    wind_view: bool = False  # the grass coloured by its lean (--view wind)
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""
@@ -46,6 +51,8 @@ class FrameUniforms:
             "u_technique_color": tuple(technique_color),
             "u_tiling": 1.0 if self.tiling else 0.0,
             "u_tiling_noise": TILING_UNIT,
+            "u_wind_view": 1.0 if self.wind_view else 0.0,
+            **wind_uniforms(self.wind, self.time),
         }
         for name, value in values.items():
             if name not in program:
@@ -54,3 +61,22 @@ class FrameUniforms:
                 program[name].write(value)
             else:
                 program[name].value = value
+
+
+def wind_uniforms(wind: Wind, time: float) -> dict[str, object]:
+    """shaders/_wind.glsl's uniforms: the patterns' travel wrapped to one repeat of the noise
+    map, so that float32 keeps its precision however long the wind has blown."""
+    gust_tile = wind.gust_scale * NOISE_FEATURES
+    turbulence_tile = wind.turbulence_scale * NOISE_FEATURES
+    gust, turbulence = wind.offsets(time)
+    return {
+        "u_wind_on": wind.enabled,
+        "u_wind_noise": WIND_UNIT,
+        "u_wind_heading": tuple(float(v) for v in wind.heading),
+        "u_gust_shift": tuple(float(v) for v in gust % gust_tile),
+        "u_turbulence_shift": tuple(float(v) for v in turbulence % turbulence_tile),
+        "u_gust_strength": wind.gust_strength,
+        "u_gust_tile": gust_tile,
+        "u_turbulence_strength": wind.turbulence_strength,
+        "u_turbulence_tile": turbulence_tile,
+    }

@@ -4,6 +4,9 @@
 // the clip volume. slice_capture.glsl defines CAPTURE: it records the bare patch, no maps.
 #include "_lod.glsl"
 #include "_design.glsl"
+#if !defined CAPTURE && !defined WIND_INCLUDED
+#include "_wind.glsl"
+#endif
 uniform mat4 u_view_proj;
 uniform float u_density;       // global density scale
 uniform float u_cell_size;     // world units per patch
@@ -18,6 +21,8 @@ in vec2 in_uv;
 in vec3 in_color;
 in vec2 in_root;
 in float in_threshold;
+in vec3 in_ctrl1;              // the blade's Bézier control points from its root (core/patch.py)
+in vec3 in_ctrl2;
 in vec2 in_origin;             // per instance
 in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
@@ -35,6 +40,9 @@ flat out float v_threshold;
 flat out float v_opacity;
 flat out float v_density;      // local density at the root, for AO_blade
 out float v_height;            // height above the ground, for AO_blade
+#ifndef CAPTURE
+flat out vec2 v_lean;          // the wind's lean at the root (the wind view)
+#endif
 
 void main() {
     vec3 s = vec3(in_mirror.x, 1.0, in_mirror.y);
@@ -56,6 +64,9 @@ void main() {
         v_threshold = 1.0;
         v_height = 0.0;
         v_map_color = vec4(0.0); v_ambient = vec3(1.0); v_diffuse = vec3(1.0);
+#ifndef CAPTURE
+        v_lean = vec2(0.0);
+#endif
         return;
     }
     // the maps change slowly across a cell: sampled per vertex, not per fragment
@@ -65,13 +76,32 @@ void main() {
 #else
     v_map_color = design_color(duv); v_ambient = design_ambient(duv); v_diffuse = design_diffuse(duv);
 #endif
+    vec3 normal = in_normal * s;
+#ifndef CAPTURE
+    // the wind bends the blade's curve about its root (core/wind.py); the vertex keeps its
+    // place across the blade (its offset from the curve), its normal turns with the curve
+    vec2 lean = wind_lean((in_origin + root) * u_cell_size);
+    v_lean = lean;
+    if (lean != vec2(0.0)) {
+        vec3 c1 = in_ctrl1 * s, c2 = in_ctrl2 * s;
+        vec3 root3 = vec3(root.x, 0.0, root.y);
+        float t = in_uv.y;
+        vec3 across = local - root3 - curve_point(c1, c2, t);
+        vec3 before = curve_tangent(c1, c2, t);
+        wind_bend(c1, c2, lean);
+        local = root3 + curve_point(c1, c2, t) + across;
+        vec3 after = curve_tangent(c1, c2, t);
+        if (dot(before, before) > 1e-12 && dot(after, after) > 1e-12)
+            normal = turn(normal, normalize(before), normalize(after));
+    }
+#endif
     vec3 world = (vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size;
 #ifndef CAPTURE
     world.y += ground_height(design_uv(in_config, root));  // eq. 6.13: the root's height
 #endif
     v_height = local.y * u_cell_size;
     v_world = world;
-    v_normal = in_normal * s;
+    v_normal = normal;
     v_uv = in_uv;
     v_color = in_color;
     v_threshold = in_threshold;

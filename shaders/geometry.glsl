@@ -4,9 +4,11 @@
 // (moved outside the clip volume, so they cost no raster work); the blade texture's alpha
 // shapes the blade through an alpha test plus alpha-to-coverage under MSAA.
 #include "_lighting.glsl"
+#include "_wind.glsl"
 
 #if defined VERTEX_SHADER
 
+#define WIND_INCLUDED
 #include "_blade_vertex.glsl"
 
 #elif defined FRAGMENT_SHADER
@@ -25,6 +27,7 @@ in vec3 v_diffuse;
 flat in float v_opacity;
 flat in float v_density;
 in float v_height;
+flat in vec2 v_lean;
 
 out vec4 f_color;
 
@@ -36,7 +39,7 @@ void main() {
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
     vec3 albedo = mix(v_color * tex.rgb, v_map_color.rgb, v_map_color.a);  // eq. 6.8
     vec3 lit = shade(albedo, n, ao_blade(v_height, v_density), v_ambient, v_diffuse);
-    f_color = vec4(technique(lit), tex.a);
+    f_color = vec4(technique(wind_view(lit, v_lean)), tex.a);
 }
 
 #endif

@@ -6,6 +6,7 @@
 #include "_lod.glsl"
 #include "_design.glsl"
 #include "_slices.glsl"
+#include "_wind.glsl"
 
 #if defined VERTEX_SHADER
 
@@ -65,6 +66,8 @@ uniform vec3 u_top_mean;
 uniform float u_density;
 uniform float u_alpha_ref;
 uniform vec3 u_eye;
+uniform float u_grass_height;  // the grass type's tallest blade (the slices' height)
+uniform float u_canopy;        // the slice's height, a fraction of u_grass_height (render/image.py)
 
 in vec2 v_patch;
 in vec3 v_world;
@@ -81,7 +84,15 @@ void main() {
     // the cell the fragment lies in (a macro-cell covers many); the top view has v = 1 - z. The
     // footprint comes from the unmirrored position: where s flips at a cell's edge, the
     // mirrored one jumps and a 2 × 2 quad across the edge would read the smallest mip.
-    vec2 p = cell_mirror(v_origin + floor(v_patch), v_mirror) * v_patch;
+    // the wind: the top view is read where the bent blades' upper parts, which it shows, came
+    // from (Habel's sheared lookup, _wind.glsl)
+    vec2 at = v_patch;
+    vec2 lean = wind_lean(v_origin + v_patch);
+    if (u_wind_on) {
+        WindShear shear = wind_shear(lean, u_grass_height);
+        at -= curve_point(shear.c1, shear.c2, u_canopy).xz;
+    }
+    vec2 p = cell_mirror(v_origin + floor(at), v_mirror) * at;
     vec2 uv = vec2(p.x, 1.0 - p.y);
     vec2 duv_x = dFdx(v_patch), duv_y = dFdy(v_patch);
     vec4 c = textureGrad(u_top_color, uv, duv_x, duv_y);
@@ -147,7 +158,7 @@ void main() {
                       mix(u_over_shade[i], u_over_shade[j], row - float(i)), under);
     float ao = 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * shade;
     vec3 lit = shade_l(albedo, l, ao, design_ambient(v_design), design_diffuse(v_design));
-    f_color = vec4(technique(lit), c.a);
+    f_color = vec4(technique(wind_view(lit, lean)), c.a);
 }
 
 #endif

@@ -47,6 +47,7 @@ void main() {
 
 #include "_design.glsl"
 #include "_slices.glsl"
+#include "_wind.glsl"
 
 uniform mat4 u_view_proj;
 uniform vec3 u_eye;
@@ -122,8 +123,9 @@ void gather(vec4 c, float ao, float l, vec2 xz) {
 
 // The horizontal slice as a layer of the volume at height u_floor (render/volume.py): colour,
 // alpha, AO and diffuse factor where the ray crosses it.
-vec4 horizontal(vec3 g, float lod, float facing, out vec2 ao_l) {
-    vec2 p = cell_mirror(v_origin + floor(g.xz), v_mirror) * g.xz;
+vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l) {
+    vec2 at = g.xz - shift;  // where the bent blades crossing the layer stand at rest
+    vec2 p = cell_mirror(v_origin + floor(at), v_mirror) * at;
     vec2 uv = vec2(p.x, 1.0 - p.y);
     float top_lod = max(lod + u_top_lod_offset, 0.0);  // explicit: no derivatives in the loop
     vec4 c = textureLod(u_top_color, uv, top_lod);
@@ -173,6 +175,19 @@ void main() {
     vec2 pi = pm + (pd + abs(pd)) * p_inum2;                  // eqs. 5.11-5.12
     vec2 safe_d = vec2(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.z) < 1e-6 ? 1e-6 : d.z);
     float lod = max(log2(distance(u_eye, v_patch + base) * u_lod_scale), 0.0);
+    // the wind where the ray enters (it varies over metres, a ray crosses a cell or two): the
+    // slices are read where the bent blades came from (Habel's sheared lookup, _wind.glsl)
+    // (taken where the ray reaches half the grass's height over the ground under its start:
+    // the blades it shows stand there, not under the cuboid's top where it enters at grazing
+    // angles, metres nearer)
+    vec2 lean = vec2(0.0);
+    WindShear shear;
+    if (u_wind_on) {
+        float over = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
+        float run = d.y < -1e-4 ? clamp((over - 0.5 * u_height) / -d.y, 0.0, 4.0) : 0.0;
+        lean = wind_lean(v_origin + e.xz + run * d.xz);
+        shear = wind_shear(lean, u_height);
+    }
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
     float side_spread = level_value(u_side_spread, lod);
@@ -243,8 +258,10 @@ void main() {
     vec2 floor_ao_l = vec2(0.0);
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
-        if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun)))
-            floor_sample = horizontal(floor_at, lod, facing * slope_l, floor_ao_l);
+        if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun))) {
+            vec2 shift = u_wind_on ? wind_unbend(shear, u_floor, u_height).yz : vec2(0.0);
+            floor_sample = horizontal(floor_at, shift, lod, facing * slope_l, floor_ao_l);
+        }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
     for (int i = 0; i < u_max_steps; ++i) {
@@ -283,8 +300,10 @@ void main() {
             s = cell_mirror(v_origin + cell, v_mirror);
         }
         if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
-        float u = fract((hit_x ? s.y * h.z : s.x * h.x));
-        vec2 uv = atlas_uv(u, y / u_height, hit_x ? slice : u_slices + slice, rows, lod);
+        vec3 rest = vec3(y, 0.0, 0.0);
+        if (u_wind_on) rest = wind_unbend(shear, y, u_height);
+        float u = fract((hit_x ? s.y * (h.z - rest.z) : s.x * (h.x - rest.y)));
+        vec2 uv = atlas_uv(u, rest.x / u_height, hit_x ? slice : u_slices + slice, rows, lod);
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
         float density = u_density * v_density * gd.y;
@@ -322,7 +341,7 @@ void main() {
     vec2 duv = design_uv(v_config, g_at / g_alpha);
     vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color(duv), design_ambient(duv),
                            design_diffuse(duv));
-    color = technique(color / g_alpha) * g_alpha;  // the technique view of the mean colour
+    color = technique(wind_view(color / g_alpha, lean)) * g_alpha;  // the technique view of the mean colour
     // A ray that never became half opaque writes the depth of the farthest point it reached
     // above the ground, not that of its entry: it ran out of steps, or left its cuboid (and the
     // cell it may run on into) with the grass beyond still to come, which the neighbouring

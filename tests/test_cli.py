@@ -64,6 +64,11 @@ def test_render_writes_png_and_stats(tmp_path):
         (["--camera", "drone"], ["unknown camera", "drone"]),
         (["--density", "3"], ["--density", "out of range"]),
         (["--eye", "1,2"], ["malformed point"]),
+        (["--time", "soon"], ["malformed time", "soon"]),
+        (["--time", "2:1:0.5"], ["time", "STEP"]),
+        (["--time", "0:1000:0.01"], ["frames", "at most 10000"]),
+        (["--time", "0:1:0.5"], ["--out", "pattern"]),
+        (["--wind", "gale"], ["--wind", "gale"]),
     ],
 )
 def test_bad_input_is_one_clear_line(tmp_path, args, words):
@@ -302,3 +307,30 @@ def test_lod_distances_for_a_view_height_are_saved_and_draw_geometry_farther(tmp
     r = sward("render", "--size", "160x96", "--lod-view-height", "2", "--stats", str(stats))
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert "view height '2' out of range" in r.stderr
+
+
+def test_render_a_time_sequence_of_the_wind(tmp_path):
+    """--time FROM:TO:STEP writes one PNG a moment; the grass moves between them with the wind
+    on, and stands still with --wind off."""
+    common = ["render", "--scene", "patch-grid", "--size", "160x120", "--camera", "grazing"]
+    stats = tmp_path / "s.json"
+    r = sward(
+        *common,
+        "--wind",
+        "on",
+        "--time",
+        "0:1:0.5",
+        "--out",
+        str(tmp_path / "f%04d.png"),
+        "--stats",
+        str(stats),
+    )
+    assert r.returncode == 0, r.stderr
+    frames = [np.asarray(Image.open(tmp_path / f"f{i:04d}.png")) for i in range(3)]
+    assert [f["time"] for f in json.loads(stats.read_text())["frames"]] == [0.0, 0.5, 1.0]
+    assert np.any(frames[0] != frames[1]) and np.any(frames[1] != frames[2])
+    still = [tmp_path / "still0.png", tmp_path / "still1.png"]
+    for seconds, out in zip(("0", "0.5"), still, strict=True):
+        r = sward(*common, "--wind", "off", "--time", seconds, "--out", str(out))
+        assert r.returncode == 0, r.stderr
+    assert np.array_equal(np.asarray(Image.open(still[0])), np.asarray(Image.open(still[1])))

@@ -6,6 +6,12 @@ process follows, and the newest frame is painted.
 Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
 W A S D move and Q E sink and rise.
 
+While the document's wind blows, the view animates: each state asked for carries the moment of
+the wind (seconds of wind since it started blowing here), and the next moment is asked for as
+soon as the full-quality frame of the last one is on screen, or after ANIMATION_STEP_MS when
+that frame is slower (a CPU renderer then shows drafts while the wind blows, as while the
+camera moves). Switching the wind off holds the grass still.
+
 The Quality view: once a full-quality frame of the newest state is on screen, the full-quality
 process draws an all-geometry reference of the same camera in the background and answers with
 the difference as a heat map (shown over the frame) and its figures (`quality_ready`); any
@@ -14,6 +20,7 @@ change gives it up, and it is asked for again when the view rests.
 
 from __future__ import annotations
 
+from time import monotonic
 from typing import ClassVar
 
 import numpy as np
@@ -26,6 +33,7 @@ from core.document import Document
 from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, zone_rings
 from core.stats import FrameStats
 from core.view_mode import ViewMode
+from core.wind import Wind
 from render.render_client import Frame, RenderClient
 
 # LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
@@ -36,6 +44,7 @@ ZONE_COLORS = {
 }
 BRUSH_COLOR = (1.0, 1.0, 1.0, 0.9)
 IMAGE_TIMEOUT_S = 600.0
+ANIMATION_STEP_MS = 250  # the longest wait for a full frame before the wind moves on
 
 
 class GrassViewport(QWidget):
@@ -84,11 +93,18 @@ class GrassViewport(QWidget):
         self.quality = False  # the Quality view (set_quality)
         self._quality: tuple[int, QImage, dict] | None = None  # version, heat map, figures
         self._quality_asked = 0  # the version a quality frame was last asked for
+        # the wind's animation: the moment drawn, and the clock it follows while the wind blows
+        self.wind_time = 0.0
+        self._wind_clock: float | None = None  # monotonic() at wind_time 0; None: still
+        self._wind_step = QTimer(self, singleShot=True, interval=ANIMATION_STEP_MS)
+        self._wind_step.timeout.connect(self._next_moment)
         self.renderer = RenderClient(self._on_frame, self.status_changed.emit, self._on_restart)
         self._notifiers: list[QSocketNotifier] = []
         self._watch()
         self.renderer.attach(document, self.request_frame)
         self.renderer.set_view_state("mode", self._mode)
+        document.events.wind.connect(self._on_wind)
+        self._on_wind(document.wind)
         self.request_frame()
 
     def _watch(self) -> None:
@@ -105,7 +121,10 @@ class GrassViewport(QWidget):
     # -- the document and the view -------------------------------------------------------------
     def set_document(self, document: Document) -> None:
         """Show another project: the render processes get it whole."""
+        self.document.events.wind.disconnect(self._on_wind)
         self.document = document
+        document.events.wind.connect(self._on_wind)
+        self._on_wind(document.wind)
         self.renderer.attach(document, self.request_frame)
         self.request_frame()
 
@@ -123,6 +142,23 @@ class GrassViewport(QWidget):
         """shaded | techniques."""
         self.renderer.set_view_state("view", view)
         self.request_frame()
+
+    @property
+    def animating(self) -> bool:
+        """True while the wind blows and the view follows it."""
+        return self._wind_clock is not None
+
+    def _on_wind(self, wind: Wind) -> None:
+        if wind.enabled and self._wind_clock is None:
+            self._wind_clock = monotonic() - self.wind_time  # on from where it stopped
+        elif not wind.enabled and self._wind_clock is not None:
+            self.wind_time = monotonic() - self._wind_clock
+            self._wind_clock = None
+            self._wind_step.stop()
+
+    def _next_moment(self) -> None:
+        if self.animating:
+            self.request_frame()
 
     def set_camera(self, camera: Camera) -> None:
         self.camera = camera
@@ -153,7 +189,9 @@ class GrassViewport(QWidget):
         if self.quality and not self.settling and self._quality_asked != self.version:
             self._quality_asked = self.version
             self.status_changed.emit("quality: drawing the all-geometry reference")
-            self.renderer.request(self.version, self.camera, self._size(), kind="quality")
+            self.renderer.request(
+                self.version, self.camera, self._size(), kind="quality", time=self.wind_time
+            )
 
     @property
     def max_image_size(self) -> int:
@@ -178,7 +216,10 @@ class GrassViewport(QWidget):
             rings = zone_rings(self.document.terrain, self.camera.eye, lod.levels)
             lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
             self.renderer.set_view_state("overlay", "zones", lines)
-        self.renderer.request(self.version, self.camera, self._size())
+        if self._wind_clock is not None:
+            self.wind_time = monotonic() - self._wind_clock
+            self._wind_step.start()  # the next moment, unless the full frame comes first
+        self.renderer.request(self.version, self.camera, self._size(), time=self.wind_time)
 
     def _on_frame(self, frame: Frame) -> None:
         if frame.kind == "image":
@@ -202,6 +243,9 @@ class GrassViewport(QWidget):
         self.last_stats = frame.stats
         self.update()
         self.frame_rendered.emit(frame.stats)
+        if self.animating and not frame.stats.preview and frame.version == self.version:
+            self._wind_step.stop()  # the full frame is on screen: the next moment now
+            QTimer.singleShot(0, self._next_moment)
         self._ask_quality()
 
     def _on_restart(self, role: str, why: str) -> None:
@@ -230,7 +274,7 @@ class GrassViewport(QWidget):
         self.renderer.set_view_state("overlay", "zones", [])
         self._token -= 1  # negative: never taken for a view's version
         version = self._token
-        self.renderer.request(version, self.camera, size, kind="image")
+        self.renderer.request(version, self.camera, size, kind="image", time=self.wind_time)
         loop = QEventLoop()
         timer = QTimer(interval=20, timeout=lambda: version in self._images and loop.quit())
         timer.start()
@@ -413,6 +457,8 @@ class GrassViewport(QWidget):
 
     def close_renderer(self) -> None:
         """Stop the render processes (the window closes)."""
+        self._wind_step.stop()
+        self._wind_clock = None
         for notifier in self._notifiers:
             notifier.setEnabled(False)
         self.renderer.close()

@@ -390,3 +390,43 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
     qtbot.waitUntil(lambda: vp.quality_figures is not None, timeout=120000)
     qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)  # off again
     assert not vp.quality and not window.quality_action.isChecked()
+
+
+def test_the_wind_dock_animates_the_grass_undoably_and_is_saved(window, qtbot, tmp_path):
+    from PySide6.QtWidgets import QApplication
+
+    from core.project_file import load_project
+
+    vp = window.viewport
+    still = grab(window)
+    assert not vp.animating and not window.wind_action.isChecked()
+    box = window.wind_panel.enabled_box
+    qtbot.mouseClick(box, Qt.MouseButton.LeftButton, pos=QPoint(8, box.height() // 2))
+    assert window.document.wind.enabled and vp.animating and window.wind_action.isChecked()
+    assert window.viewport.renderer_facts()["wind"].enabled
+    # frames keep coming at later moments of the wind, and the grass moves between them
+    seen: list[tuple[float, np.ndarray]] = []
+
+    def record(_stats):
+        seen.append((vp.wind_time, vp.frame_image()))
+
+    vp.frame_rendered.connect(record)
+    qtbot.waitUntil(lambda: len({t for t, _ in seen}) >= 3, timeout=60_000)
+    vp.frame_rendered.disconnect(record)
+    first, last = seen[0], seen[-1]
+    assert last[0] > first[0]
+    assert first[1].shape == last[1].shape and np.any(first[1] != last[1])
+    # the dial turns the wind (one more undo step), the project keeps it
+    window.wind_panel.dial.setValue((window.wind_panel.dial.value() + 90) % 360)
+    assert window.document.wind.direction == pytest.approx(120.0)
+    assert window.projects.save_as(tmp_path / "windy.sward")
+    saved = load_project(tmp_path / "windy.sward").wind
+    assert saved.enabled and saved.direction == pytest.approx(120.0)
+    # undo: the direction, then the wind itself; the view holds still again
+    window.undo_stack.undo()
+    assert window.document.wind.direction == pytest.approx(30.0)
+    window.undo_stack.undo()
+    assert not window.document.wind.enabled and not vp.animating and not box.isChecked()
+    QApplication.processEvents()
+    calm = grab(window)
+    assert np.abs(calm.astype(int) - still.astype(int)).mean() < 1.0  # as before the wind

@@ -1,0 +1,89 @@
+// The wind field and the bend it gives a blade (core/wind.py holds the same maths and its
+// tests): a tip displacement, as a fraction of a blade's length, from a noise map translated in
+// the wind's direction (Habel 2007: gusts of low frequency and high amplitude, turbulence of high
+// frequency and low amplitude); a blade is the quadratic Bézier curve of its trajectory, its tip
+// moved by the displacement, its middle control point by a quarter of it, and the curve scaled
+// about the root back to its length at rest.
+uniform bool u_wind_on;
+uniform sampler2D u_wind_noise;  // r: gusts, gb: turbulence, each -1 … 1, repeating
+uniform vec2 u_wind_heading;     // unit (x, z) the wind blows towards
+uniform vec2 u_gust_shift;       // how far the patterns have travelled (world, wrapped)
+uniform vec2 u_turbulence_shift;
+uniform float u_gust_strength;
+uniform float u_gust_tile;       // world units a repeat of the noise map spans for the gusts
+uniform float u_turbulence_strength;
+uniform float u_turbulence_tile;
+
+const float WIND_MAX_LEAN = 0.9;     // core/wind.py MAX_LEAN
+const float WIND_MIDDLE_SHARE = 0.25;  // core/wind.py MIDDLE_SHARE
+
+// The wind view (sward render --view wind): the grass coloured by the lean it is drawn with,
+// red and green the x and z components (0.5: none), whatever the representation.
+uniform float u_wind_view;
+
+vec3 wind_view(vec3 lit, vec2 lean) {
+    vec3 shown = vec3(0.5 + 0.5 * lean / WIND_MAX_LEAN, 0.25);
+    return mix(lit, shown, u_wind_view);
+}
+
+// the tip displacement (x, z) at a world point, a fraction of a blade's length
+vec2 wind_lean(vec2 xz) {
+    if (!u_wind_on) return vec2(0.0);
+    float gust = textureLod(u_wind_noise, (xz - u_gust_shift) / u_gust_tile, 0.0).r;
+    vec2 eddy = textureLod(u_wind_noise, (xz - u_turbulence_shift) / u_turbulence_tile, 0.0).gb;
+    vec2 w = u_wind_heading * (u_gust_strength * 0.5 * (1.0 + gust)) + u_turbulence_strength * eddy;
+    return w * min(1.0, WIND_MAX_LEAN / max(length(w), 1e-9));
+}
+
+// B(t) of the curve from the root (origin) through c1 and c2, and its derivative
+vec3 curve_point(vec3 c1, vec3 c2, float t) { return 2.0 * t * (1.0 - t) * c1 + t * t * c2; }
+vec3 curve_tangent(vec3 c1, vec3 c2, float t) { return 2.0 * (1.0 - 2.0 * t) * c1 + 2.0 * t * c2; }
+
+float curve_length(vec3 c1, vec3 c2) {
+    return 0.1739274226 * length(curve_tangent(c1, c2, 0.0694318442))
+         + 0.3260725774 * length(curve_tangent(c1, c2, 0.3300094782))
+         + 0.3260725774 * length(curve_tangent(c1, c2, 0.6699905218))
+         + 0.1739274226 * length(curve_tangent(c1, c2, 0.9305681558));
+}
+
+// bend the curve (c1, c2) by the tip displacement `lean`, keeping its length
+void wind_bend(inout vec3 c1, inout vec3 c2, vec2 lean) {
+    float rest = curve_length(c1, c2);
+    vec3 move = vec3(lean.x, 0.0, lean.y) * rest;
+    c1 += WIND_MIDDLE_SHARE * move;
+    c2 += move;
+    float scale = rest / max(curve_length(c1, c2), 1e-12);
+    c1 *= scale;
+    c2 *= scale;
+}
+
+// v turned by the rotation that takes unit a to unit b (Rodrigues)
+vec3 turn(vec3 v, vec3 a, vec3 b) {
+    vec3 k = cross(a, b);
+    float s = length(k);
+    float c = dot(a, b);
+    if (s < 1e-6) return v;
+    k /= s;
+    return v * c + cross(k, v) * s + k * dot(k, v) * (1.0 - c);
+}
+
+// The slices and the top view hold the grass at rest: a far representation reads them where the
+// bent blades' parts at height y came from (Habel's sheared lookup). For the grass type's
+// tallest blade standing upright (height `height`) bent by `lean`: at a height y over the
+// ground, the rest height to read and the horizontal shift (x, z) to undo.
+struct WindShear { vec3 c1; vec3 c2; };
+
+WindShear wind_shear(vec2 lean, float height) {
+    WindShear s;
+    s.c1 = vec3(0.0, 0.5 * height, 0.0);
+    s.c2 = vec3(0.0, height, 0.0);
+    wind_bend(s.c1, s.c2, lean);
+    return s;
+}
+
+// (rest height, shift x, shift z) for a bent height y
+vec3 wind_unbend(WindShear s, float y, float height) {
+    float t = clamp(y / max(s.c2.y, 1e-6), 0.0, 1.0);
+    vec3 p = curve_point(s.c1, s.c2, t);
+    return vec3(t * height, p.x, p.z);
+}

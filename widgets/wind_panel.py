@@ -1,0 +1,111 @@
+"""The wind panel (issue: wind): on/off, the direction on a dial, and the gusts' and the
+turbulence's strength and size — a dial above a pyqtgraph ParameterTree that shows a Wind and
+reports edits as a new one. While the wind is on, the viewport animates (widgets/viewport.py)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from pyqtgraph.parametertree import Parameter, ParameterTree
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtWidgets import QCheckBox, QDial, QHBoxLayout, QLabel, QVBoxLayout, QWidget
+
+from core.wind import RANGES, Wind
+
+# (field, title, step, suffix); the limits are core/wind.py's
+NUMBERS = (
+    ("speed", "Gust speed", 0.25, " units/s"),
+    ("gust_strength", "Gust strength", 0.05, " × length"),
+    ("gust_scale", "Gust size", 0.5, " units"),
+    ("turbulence_strength", "Turbulence strength", 0.01, " × length"),
+    ("turbulence_scale", "Turbulence size", 0.1, " units"),
+)
+
+
+class WindPanel(QWidget):
+    wind_edited = Signal(object)  # Wind
+
+    def __init__(self, wind: Wind, parent=None) -> None:
+        super().__init__(parent)
+        self.enabled_box = QCheckBox("Wind blows (animates the view)")
+        # the dial's value is the direction (core/wind.py: 0 ° = +x, 90 ° = +z) turned by 90 °
+        self.dial = QDial()
+        self.dial.setRange(0, 359)
+        self.dial.setWrapping(True)
+        self.dial.setNotchesVisible(True)
+        self.dial.setNotchTarget(15.0)
+        self.dial.setFixedSize(96, 96)
+        self.dial.setToolTip("the direction the wind blows towards, seen from above")
+        self.direction_label = QLabel()
+        children = [
+            {
+                "name": name,
+                "title": title,
+                "type": "float",
+                "limits": RANGES[name],
+                "step": step,
+                "suffix": suffix,
+                "value": getattr(wind, name),
+            }
+            for name, title, step, suffix in NUMBERS
+        ]
+        self.root = Parameter.create(name="wind", type="group", children=children)
+        self.tree = ParameterTree(showHeader=False)
+        self.tree.setParameters(self.root, showTop=False)
+        self.message = QLabel()
+        self.message.setWordWrap(True)
+        dial_row = QHBoxLayout()
+        dial_row.addWidget(self.dial)
+        dial_row.addWidget(self.direction_label, 1, Qt.AlignmentFlag.AlignVCenter)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.enabled_box)
+        layout.addLayout(dial_row)
+        layout.addWidget(self.tree)
+        layout.addWidget(self.message)
+        self.wind = wind
+        self._updating = False
+        self.show_wind(wind)
+        self.enabled_box.toggled.connect(self._on_edited)
+        self.dial.valueChanged.connect(self._on_edited)
+        self.root.sigTreeStateChanged.connect(self._on_edited)
+
+    @staticmethod
+    def dial_value(direction: float) -> int:
+        """The dial's position of a wind direction (0 ° = +x; the dial's 0 points to -z)."""
+        return round(direction + 90.0) % 360
+
+    @staticmethod
+    def direction_of(dial: int) -> float:
+        value = (dial - 90.0) % 360.0
+        return value - 360.0 if value > 180.0 else value
+
+    def show_wind(self, wind: Wind) -> None:
+        """Model -> widgets (an undo, a newly opened project)."""
+        self.wind = wind
+        self._updating = True
+        try:
+            self.enabled_box.setChecked(wind.enabled)
+            self.dial.setValue(self.dial_value(wind.direction))
+            for name, *_ in NUMBERS:
+                self.root.child(name).setValue(getattr(wind, name))
+            self.direction_label.setText(f"towards {wind.direction:.0f} °")
+        finally:
+            self._updating = False
+
+    def _on_edited(self, *_) -> None:
+        if self._updating:
+            return
+        values = {name: float(self.root.child(name).value()) for name, *_ in NUMBERS}
+        values["enabled"] = self.enabled_box.isChecked()
+        values["direction"] = self.direction_of(self.dial.value())
+        try:
+            wind = dataclasses.replace(self.wind, **values)
+        except ValueError as exc:
+            self.message.setText(str(exc))
+            return
+        self.message.clear()
+        self.direction_label.setText(f"towards {wind.direction:.0f} °")
+        if wind != self.wind:
+            self.wind = wind
+            self.wind_edited.emit(wind)
