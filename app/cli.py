@@ -204,6 +204,20 @@ def parser() -> argparse.ArgumentParser:
     _lod_view_option(q)
     _wind_option(q)
     q.add_argument(
+        "--time",
+        type=_times,
+        default=[0.0],
+        metavar="SECONDS",
+        help="the moment of the wind the frames draw (default 0)",
+    )
+    q.add_argument(
+        "--time-step",
+        type=float,
+        default=0.0,
+        metavar="S",
+        help="along --path, each frame this many seconds of wind after the one before",
+    )
+    q.add_argument(
         "--camera",
         action="append",
         help="named camera (repeat for several; default: the "
@@ -443,7 +457,21 @@ def cmd_quality(args: argparse.Namespace) -> int:
             raise CliError(f"cannot make {args.out}: {exc.strerror or exc}") from None
         _writable(args.out / "quality.json")
     cameras = args.camera or ([] if args.path else [document.default_camera])
-    text, _ = quality(document, args.size, cameras, args.path, args.frames, args.out, args.budget)
+    if not (math.isfinite(args.time_step) and 0.0 <= args.time_step <= 3600.0):
+        raise CliError(f"--time-step {args.time_step:g} out of range; 0 … 3600 seconds")
+    if len(args.time) != 1:
+        raise CliError("--time: sward quality takes one moment (SECONDS); --time-step moves it")
+    text, _ = quality(
+        document,
+        args.size,
+        cameras,
+        args.path,
+        args.frames,
+        args.out,
+        args.budget,
+        args.time[0],
+        args.time_step,
+    )
     print(text)
     return 0
 

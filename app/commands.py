@@ -146,12 +146,11 @@ def set_light(doc: Document, new: Lighting) -> SetValue:
 
 
 def set_wind(doc: Document, new: Wind) -> SetValue:
-    text = (
-        "wind on"
-        if new.enabled and not doc.wind.enabled
-        else ("wind off" if doc.wind.enabled and not new.enabled else "change wind")
-    )
-    return SetValue(text, doc, "wind", doc.wind, new, merge_id=3)
+    """Switching the wind on or off is an undo step of its own; a drag of the dial or a slider
+    merges into one "change wind"."""
+    if new.enabled != doc.wind.enabled:
+        return SetValue("wind on" if new.enabled else "wind off", doc, "wind", doc.wind, new)
+    return SetValue("change wind", doc, "wind", doc.wind, new, merge_id=3)
 
 
 def set_cameras(doc: Document, new: dict, text: str) -> SetValue:

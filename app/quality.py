@@ -55,6 +55,11 @@ class QualityRun:
         self.blade_width = float(document.params(0).width_max)
         self._throughput: float | None = None  # triangles per second measured in LOD frames
 
+    def set_time(self, seconds: float) -> None:
+        """The moment of the wind both frames draw."""
+        for renderer in (self.lod, self.geometry):
+            renderer.pipeline.time = seconds
+
     def release(self) -> None:
         for renderer in (self.lod, self.geometry):
             renderer.release()
@@ -122,9 +127,13 @@ class QualityRun:
             row["heat_map"] = f"{stem}-flip.png"
         return row
 
-    def path_figures(self, name: str, cameras: list[Camera]) -> dict:
+    def path_figures(
+        self, name: str, cameras: list[Camera], start: float = 0.0, step: float = 0.0
+    ) -> dict:
+        """Along the path's cameras, frame i at the wind's moment start + i · step."""
         lod_frames, references = [], []
-        for camera in cameras:
+        for index, camera in enumerate(cameras):
+            self.set_time(start + index * step)
             lod_frames.append(self.lod_frame(camera)[0])
             triangles, estimate = self.reference_estimate_s(camera)
             if estimate > self.budget_s:
@@ -154,19 +163,27 @@ def quality(
     frames: int,
     out: Path | None,
     budget_s: float = BUDGET_S,
+    time: float = 0.0,
+    time_step: float = 0.0,
 ) -> tuple[str, dict]:
-    """Render and compare; the printed table and the JSON document."""
+    """Render and compare (at the wind's moment `time`; along a path each frame `time_step`
+    later); the printed table and the JSON document."""
     run = QualityRun(document, size, budget_s)
     result: dict = {
         "scene": document.name,
         "size": list(size),
         # per grass type: the view height its LOD distances hold for (None: world units)
         "lod_view_height": [lod.view_height for lod in document.lods],
+        "wind": document.wind.enabled,
+        "time": time,
+        "time_step": time_step,
         "cameras": [],
     }
     try:
         if path is not None:
-            result["path"] = run.path_figures(path, document.path_cameras(path, frames))
+            cameras_on_path = document.path_cameras(path, frames)
+            result["path"] = run.path_figures(path, cameras_on_path, time, time_step)
+        run.set_time(time)
         for name in cameras:
             result["cameras"].append(run.camera_figures(name, document.camera(name), out))
     finally:
@@ -187,7 +204,14 @@ def report(result: dict) -> str:
     w, h = result["size"]
     heights = {v for v in result.get("lod_view_height", []) if v is not None}
     zones = f" (LOD distances for a view {', '.join(f'{v:g}' for v in sorted(heights))} px tall)"
-    lines = [f"{result['scene']} at {w}x{h}: LOD against all-geometry{zones if heights else ''}"]
+    wind = ""
+    if result.get("wind"):
+        wind = f", wind at {result['time']:g} s"
+        if result.get("time_step"):
+            wind += f" (+{result['time_step']:g} s a path frame)"
+    lines = [
+        f"{result['scene']} at {w}x{h}: LOD against all-geometry{zones if heights else ''}{wind}"
+    ]
     for row in result["cameras"]:
         if "lod" not in row:
             lines.append(

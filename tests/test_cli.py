@@ -253,6 +253,8 @@ def test_quality_estimates_a_reference_beyond_its_budget_and_measures_popping(tm
         (["--path", "nowhere"], "unknown camera path 'nowhere'"),
         (["--frames", "1", "--path", "orbit"], "--frames 1 out of range"),
         (["--budget", "0"], "--budget 0 out of range"),
+        (["--time-step", "-1"], "--time-step -1 out of range"),
+        (["--time", "0:1:0.5"], "one moment"),
     ],
 )
 def test_quality_refuses_bad_input_in_one_line(args, words):
@@ -334,3 +336,24 @@ def test_render_a_time_sequence_of_the_wind(tmp_path):
         r = sward(*common, "--wind", "off", "--time", seconds, "--out", str(out))
         assert r.returncode == 0, r.stderr
     assert np.array_equal(np.asarray(Image.open(still[0])), np.asarray(Image.open(still[1])))
+
+
+def test_quality_along_a_path_while_the_wind_blows(tmp_path):
+    """--time-step: each path frame is that much wind later; with the wind on the still camera
+    sees the grass move, so the reference changes between frames by more than without."""
+    changes, printed = {}, {}
+    for wind in ("on", "off"):
+        out = tmp_path / wind
+        r = sward(
+            "quality", "--scene", "patch-grid", "--path", "orbit", "--frames", "3",
+            "--size", "96x64", "--wind", wind, "--time", "1", "--time-step", "0.5",
+            "--out", str(out),
+        )  # fmt: skip
+        assert r.returncode == 0, r.stderr
+        result = json.loads((out / "quality.json").read_text())
+        assert result["wind"] == (wind == "on") and result["time_step"] == 0.5
+        changes[wind] = result["path"]["reference_max_change"]
+        printed[wind] = r.stdout
+    assert "wind at 1 s (+0.5 s a path frame)" in printed["on"]
+    assert "wind" not in printed["off"].splitlines()[0]
+    assert changes["on"] > changes["off"]

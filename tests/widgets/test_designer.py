@@ -423,8 +423,10 @@ def test_the_wind_dock_animates_the_grass_undoably_and_is_saved(window, qtbot, t
     saved = load_project(tmp_path / "windy.sward").wind
     assert saved.enabled and saved.direction == pytest.approx(120.0)
     # undo: the direction, then the wind itself; the view holds still again
+    assert window.undo_stack.undoText() == "change wind"
     window.undo_stack.undo()
     assert window.document.wind.direction == pytest.approx(30.0)
+    assert window.document.wind.enabled and window.undo_stack.undoText() == "wind on"
     window.undo_stack.undo()
     assert not window.document.wind.enabled and not vp.animating and not box.isChecked()
     QApplication.processEvents()
