@@ -28,7 +28,8 @@ class WindPanel(QWidget):
     def __init__(self, wind: Wind, parent=None) -> None:
         super().__init__(parent)
         self.enabled_box = QCheckBox("Wind blows (animates the view)")
-        # the dial's value is the direction (core/wind.py: 0 ° = +x, 90 ° = +z) turned by 90 °
+        # the dial points where the wind blows, seen from above with -z up (the Map dock's
+        # way): QDial counts clockwise from its bottom, so +z (down) is 0, +x (right) 270
         self.dial = QDial()
         self.dial.setRange(0, 359)
         self.dial.setWrapping(True)
@@ -72,12 +73,12 @@ class WindPanel(QWidget):
 
     @staticmethod
     def dial_value(direction: float) -> int:
-        """The dial's position of a wind direction (0 ° = +x; the dial's 0 points to -z)."""
-        return round(direction + 90.0) % 360
+        """The dial's position of a wind direction (core/wind.py: 0 ° = +x, 90 ° = +z)."""
+        return round(direction + 270.0) % 360
 
     @staticmethod
     def direction_of(dial: int) -> float:
-        value = (dial - 90.0) % 360.0
+        value = (dial - 270.0) % 360.0
         return value - 360.0 if value > 180.0 else value
 
     def show_wind(self, wind: Wind) -> None:

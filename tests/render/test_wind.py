@@ -52,10 +52,10 @@ def test_still_air_draws_the_same_frame_at_any_time(headless):
 @pytest.mark.parametrize("mode", ["geometry", "volume", "image"])
 def test_each_representation_moves_on_its_own(headless, mode):
     """--only each representation: the wind moves it between two moments."""
-    doc = get_scene("meadow").document()
+    doc = get_scene("patch-grid").document()
     doc.wind = Wind(enabled=True, gust_strength=0.6)
     renderer = headless(doc, mode=mode)
-    camera = doc.camera("default")
+    camera = doc.camera("grazing")
     frames = []
     for t in (0.0, 1.0):
         renderer.pipeline.time = t
