@@ -1,9 +1,12 @@
 """`sward profile`: frame statistics per viewpoint or along a camera path, as the thesis's
-chapter 7 tables (median / min / max), written to JSON as well."""
+chapter 7 tables (median / min / max), written to JSON as well. While the project's wind blows
+the frames follow it (FRAME_S of wind a frame), and the same frames are drawn again with the
+wind off: what the wind costs, per technique."""
 
 from __future__ import annotations
 
 import json
+import statistics
 from pathlib import Path
 
 from core.document import Document
@@ -15,6 +18,10 @@ from core.profile import (
     summarize,
     table,
 )
+from core.stats import FrameStats
+
+FRAME_S = 1.0 / 30.0  # seconds of wind from one profiled frame to the next
+PARTS = ("t_a_ms", "t_g_ms", "t_v_ms", "t_i_ms")
 
 
 def profile(
@@ -35,11 +42,19 @@ def profile(
         views = [(name, [document.camera(name)] * frames) for name in document.cameras]
     rows, result = [], {"scene": document.name, "size": list(size), "viewpoints": []}
     every = []
+    wind = document.wind
+    costs = []
     try:
         for name, cameras in views:
             renderer.render(cameras[0], size, measure=True)  # warm-up: shaders compile lazily
-            stats = [renderer.render(camera, size, measure=True)[1] for camera in cameras]
+            stats = _frames(renderer, cameras, size)
             every += stats
+            if wind.enabled:
+                document.wind = wind.replace(enabled=False)
+                try:
+                    costs.append((name, _wind_cost(stats, _frames(renderer, cameras, size))))
+                finally:
+                    document.wind = wind
             summary = summarize(stats)
             rows.append((name, summary))
             result["viewpoints"].append(
@@ -53,6 +68,11 @@ def profile(
     finally:
         renderer.release()
     text = table(rows)
+    if costs:
+        result["wind_cost"] = {name: cost for name, cost in costs}
+        for name, cost in costs:
+            added = ", ".join(f"{p[:3]} {cost[p]['added_percent']:+.1f} %" for p in PARTS)
+            text += f"\nwind at {name}: {added} (medians against the same frames, wind off)"
     ok = all(v["parts_add_up"] for v in result["viewpoints"])
     result["parts_add_up"] = ok
     text += (
@@ -67,3 +87,23 @@ def profile(
         out.write_text(json.dumps(result, indent=2) + "\n")
         text += f"\nwrote {out}"
     return text, result
+
+
+def _frames(renderer, cameras, size) -> list[FrameStats]:
+    """One measured frame a camera, each FRAME_S of wind after the one before."""
+    out = []
+    for index, camera in enumerate(cameras):
+        renderer.pipeline.time = index * FRAME_S
+        out.append(renderer.render(camera, size, measure=True)[1])
+    return out
+
+
+def _wind_cost(blowing: list[FrameStats], still: list[FrameStats]) -> dict:
+    """Per part, the medians with and without the wind and the share the wind adds."""
+    cost = {}
+    for part in PARTS:
+        on = statistics.median(getattr(s, part) for s in blowing)
+        off = statistics.median(getattr(s, part) for s in still)
+        added = 100.0 * (on - off) / off if off > 0 else 0.0
+        cost[part] = {"wind": on, "still": off, "added_percent": added}
+    return cost

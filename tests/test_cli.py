@@ -357,3 +357,17 @@ def test_quality_along_a_path_while_the_wind_blows(tmp_path):
     assert "wind at 1 s (+0.5 s a path frame)" in printed["on"]
     assert "wind" not in printed["off"].splitlines()[0]
     assert changes["on"] > changes["off"]
+
+
+def test_profile_reports_what_the_wind_costs_per_technique(tmp_path):
+    out = tmp_path / "p.json"
+    args = ["profile", "--scene", "patch-grid", "--frames", "2", "--size", "96x64", "--out"]
+    r = sward(*args, str(out), "--wind", "on")
+    assert r.returncode == 0, r.stderr
+    assert "wind at default: t_a" in r.stdout and "t_v" in r.stdout
+    cost = json.loads(out.read_text())["wind_cost"]["default"]
+    for part in ("t_a_ms", "t_g_ms", "t_v_ms", "t_i_ms"):
+        assert cost[part]["wind"] > 0 and cost[part]["still"] > 0
+    r = sward(*args, str(out), "--wind", "off")
+    assert r.returncode == 0 and "wind at" not in r.stdout
+    assert "wind_cost" not in json.loads(out.read_text())
