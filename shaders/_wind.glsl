@@ -69,21 +69,26 @@ vec3 turn(vec3 v, vec3 a, vec3 b) {
 
 // The slices and the top view hold the grass at rest: a far representation reads them where the
 // bent blades' parts at height y came from (Habel's sheared lookup). For the grass type's
-// tallest blade standing upright (height `height`) bent by `lean`: at a height y over the
-// ground, the rest height to read and the horizontal shift (x, z) to undo.
-struct WindShear { vec3 c1; vec3 c2; };
+// tallest blade standing upright (height `height`) bent by `lean`, with t = y / its bent tip
+// height: the shift is B(t).xz = 2t c1.xz + t² (c2 - 2 c1).xz, a polynomial in y, and the rest
+// height t · height; a ray step evaluates it with two multiply-adds (and the identity when the
+// air is still).
+struct WindShear { vec2 lin; vec2 quad; float stretch; float top; };
 
-WindShear wind_shear(vec2 lean, float height) {
-    WindShear s;
-    s.c1 = vec3(0.0, 0.5 * height, 0.0);
-    s.c2 = vec3(0.0, height, 0.0);
-    wind_bend(s.c1, s.c2, lean);
-    return s;
+WindShear wind_still(float height) {
+    return WindShear(vec2(0.0), vec2(0.0), 1.0, height);
 }
 
-// (rest height, shift x, shift z) for a bent height y
-vec3 wind_unbend(WindShear s, float y, float height) {
-    float t = clamp(y / max(s.c2.y, 1e-6), 0.0, 1.0);
-    vec3 p = curve_point(s.c1, s.c2, t);
-    return vec3(t * height, p.x, p.z);
+WindShear wind_shear(vec2 lean, float height) {
+    vec3 c1 = vec3(0.0, 0.5 * height, 0.0);
+    vec3 c2 = vec3(0.0, height, 0.0);
+    wind_bend(c1, c2, lean);
+    float inv = 1.0 / max(c2.y, 1e-6);
+    return WindShear(2.0 * c1.xz * inv, (c2.xz - 2.0 * c1.xz) * inv * inv, height * inv, c2.y);
+}
+
+// (rest height, shift x, shift z) for a bent height y over the ground
+vec3 wind_unbend(WindShear s, float y) {
+    float b = min(y, s.top);
+    return vec3(b * s.stretch, (s.lin + s.quad * b) * b);
 }

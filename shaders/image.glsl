@@ -90,7 +90,7 @@ void main() {
     vec2 lean = wind_lean(v_origin + v_patch);
     if (u_wind_on) {
         WindShear shear = wind_shear(lean, u_grass_height);
-        at -= curve_point(shear.c1, shear.c2, u_canopy).xz;
+        at -= wind_unbend(shear, u_canopy * shear.top).yz;
     }
     vec2 p = cell_mirror(v_origin + floor(at), v_mirror) * at;
     vec2 uv = vec2(p.x, 1.0 - p.y);

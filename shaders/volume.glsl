@@ -181,7 +181,7 @@ void main() {
     // the blades it shows stand there, not under the cuboid's top where it enters at grazing
     // angles, metres nearer)
     vec2 lean = vec2(0.0);
-    WindShear shear;
+    WindShear shear = wind_still(u_height);
     if (u_wind_on) {
         float over = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
         float run = d.y < -1e-4 ? clamp((over - 0.5 * u_height) / -d.y, 0.0, 4.0) : 0.0;
@@ -259,8 +259,8 @@ void main() {
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
         if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun))) {
-            vec2 shift = u_wind_on ? wind_unbend(shear, u_floor, u_height).yz : vec2(0.0);
-            floor_sample = horizontal(floor_at, shift, lod, facing * slope_l, floor_ao_l);
+            floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
+                                      facing * slope_l, floor_ao_l);
         }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
@@ -300,8 +300,7 @@ void main() {
             s = cell_mirror(v_origin + cell, v_mirror);
         }
         if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
-        vec3 rest = vec3(y, 0.0, 0.0);
-        if (u_wind_on) rest = wind_unbend(shear, y, u_height);
+        vec3 rest = wind_unbend(shear, y);  // (y, 0, 0) in still air
         float u = fract((hit_x ? s.y * (h.z - rest.z) : s.x * (h.x - rest.y)));
         vec2 uv = atlas_uv(u, rest.x / u_height, hit_x ? slice : u_slices + slice, rows, lod);
         vec4 c = textureLod(u_side_color, uv, lod);
