@@ -459,6 +459,7 @@ class GrassViewport(QWidget):
         """Stop the render processes (the window closes)."""
         self._wind_step.stop()
         self._wind_clock = None
+        self.document.events.wind.disconnect(self._on_wind)
         for notifier in self._notifiers:
             notifier.setEnabled(False)
         self.renderer.close()
