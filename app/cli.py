@@ -145,7 +145,8 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument(
         "--out",
         type=Path,
-        help="PNG file to write; with a time sequence a pattern such as frames/f%%04d.png",
+        help="PNG file to write; with a time sequence one animated PNG, or a PNG a frame "
+        "with a pattern such as frames/f%%04d.png",
     )
     r.add_argument("--stats", type=Path, help="JSON file for the frame statistics")
     r.add_argument(
@@ -342,7 +343,7 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise CliError("--eye and --target go together")
     if args.out is None and args.stats is None:
         raise CliError("nothing to write: give --out PNG and/or --stats JSON")
-    outs = _frame_paths(args.out, len(args.time))
+    outs, animated = _frame_paths(args.out, len(args.time), args.size)
     for path in (*outs, args.stats):
         if path is not None:
             _writable(path)
@@ -376,17 +377,22 @@ def cmd_render(args: argparse.Namespace) -> int:
     document.set_params(0, params)
     if args.density is not None:
         document.density = args.density
-    records = []
+    records, frames = [], []
     with HeadlessRenderer(document, mode=args.only or "lod", view=args.view) as renderer:
-        for seconds, out in zip(args.time, outs or [None] * len(args.time), strict=True):
+        for index, seconds in enumerate(args.time):
             renderer.pipeline.time = seconds
             image, stats = renderer.render(camera, args.size, measure=True)
             records.append(
                 {**stats.to_dict(), "scene": document.name, "camera": camera_name, "time": seconds}
             )
-            if out is not None:
-                _save_png(image, out)
-                print(f"wrote {out} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
+            if animated:
+                frames.append(image)
+            elif outs:
+                _save_png(image, outs[index])
+                print(f"wrote {outs[index]} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
+    if animated:
+        _save_animation(frames, outs[0], args.time[1] - args.time[0])
+        print(f"wrote {outs[0]} ({len(frames)} frames of {args.size[0]}x{args.size[1]}, animated)")
     if args.stats is not None:
         data = records[0] if len(records) == 1 else {"frames": records}
         try:
@@ -396,21 +402,52 @@ def cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
-def _frame_paths(out: Path | None, count: int) -> list[Path]:
-    """The PNG of each frame: --out itself for one, its %d pattern filled in for a sequence."""
+ANIMATION_BYTES = 1 << 30  # the frames an animated PNG holds in memory before it is written
+
+
+def _frame_paths(out: Path | None, count: int, size: tuple[int, int]) -> tuple[list[Path], bool]:
+    """Where the frames go, and whether as one animated PNG: --out itself for one frame; for a
+    sequence its %d pattern filled in, or without a pattern one animated PNG (APNG)."""
     if out is None:
-        return []
+        return [], False
     if count == 1:
-        return [out]
+        return [out], False
+    if "%" not in str(out):
+        need = count * size[0] * size[1] * 3
+        if need > ANIMATION_BYTES:
+            raise CliError(
+                f"--out {out}: {count} frames of {size[0]}x{size[1]} are too many for one "
+                f"animated PNG ({need / 2**30:.1f} GB in memory); give a pattern with %d, e.g. "
+                "frames/f%04d.png, for a PNG a frame"
+            )
+        return [out], True
     try:
         paths = [Path(str(out) % i) for i in range(count)]
     except (TypeError, ValueError):
         raise CliError(
-            f"--out {out}: a time sequence needs a pattern with one %d, e.g. frames/f%04d.png"
+            f"--out {out}: a time sequence needs one %d in the pattern, e.g. frames/f%04d.png"
         ) from None
     if len(set(paths)) != count:
         raise CliError(f"--out {out}: the pattern gives every frame the same name; use %04d")
-    return paths
+    return paths, False
+
+
+def _save_animation(frames: list, path: Path, step_s: float) -> None:
+    """An animated PNG (Pillow's APNG writer), each frame shown for the time step, looping."""
+    from PIL import Image
+
+    images = [Image.fromarray(f) for f in frames]
+    try:
+        images[0].save(
+            path,
+            format="PNG",
+            save_all=True,
+            append_images=images[1:],
+            duration=max(round(step_s * 1000.0), 1),
+            loop=0,
+        )
+    except OSError as exc:
+        raise CliError(f"cannot write {path}: {exc.strerror or exc}") from None
 
 
 def _save_png(image, path: Path) -> None:

@@ -67,7 +67,8 @@ def test_render_writes_png_and_stats(tmp_path):
         (["--time", "soon"], ["malformed time", "soon"]),
         (["--time", "2:1:0.5"], ["time", "STEP"]),
         (["--time", "0:1000:0.01"], ["frames", "at most 10000"]),
-        (["--time", "0:1:0.5"], ["--out", "pattern"]),
+        (["--time", "0:1:0.5", "--out", "f%q.png"], ["--out", "pattern"]),
+        (["--time", "0:2000:0.5", "--size", "1024x768"], ["--out", "too many", "%d"]),
         (["--wind", "gale"], ["--wind", "gale"]),
     ],
 )
@@ -336,6 +337,14 @@ def test_render_a_time_sequence_of_the_wind(tmp_path):
         r = sward(*common, "--wind", "off", "--time", seconds, "--out", str(out))
         assert r.returncode == 0, r.stderr
     assert np.array_equal(np.asarray(Image.open(still[0])), np.asarray(Image.open(still[1])))
+    # without a %d pattern: one animated PNG, a frame per moment
+    animation = tmp_path / "gust.png"
+    r = sward(*common, "--wind", "on", "--time", "0:1:0.5", "--out", str(animation))
+    assert r.returncode == 0, r.stderr
+    with Image.open(animation) as apng:
+        assert apng.is_animated and apng.n_frames == 3
+        apng.seek(2)
+        assert np.array_equal(np.asarray(apng.convert("RGB")), frames[2])
 
 
 def test_quality_along_a_path_while_the_wind_blows(tmp_path):
