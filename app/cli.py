@@ -86,6 +86,16 @@ def _times(text: str) -> list[float]:
     return [start + i * step for i in range(count)]
 
 
+def _time_option(p: argparse.ArgumentParser, metavar: str, more: str) -> None:
+    p.add_argument(
+        "--time",
+        type=_times,
+        default=[0.0],
+        metavar=metavar,
+        help=f"the moment of the wind to draw in seconds (default 0); {more}",
+    )
+
+
 def _wind_option(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--wind",
@@ -149,13 +159,7 @@ def parser() -> argparse.ArgumentParser:
         "with a pattern such as frames/f%%04d.png",
     )
     r.add_argument("--stats", type=Path, help="JSON file for the frame statistics")
-    r.add_argument(
-        "--time",
-        type=_times,
-        default=[0.0],
-        metavar="SECONDS|FROM:TO:STEP",
-        help="the moment of the wind to draw (default 0), or a sequence of frames",
-    )
+    _time_option(r, "SECONDS|FROM:TO:STEP", "or a sequence of frames")
     _wind_option(r)
 
     pr = sub.add_parser("profile", help="frame statistics per viewpoint or along a path")
@@ -204,13 +208,7 @@ def parser() -> argparse.ArgumentParser:
     q.add_argument("--project", type=Path, help="project file (instead of --scene)")
     _lod_view_option(q)
     _wind_option(q)
-    q.add_argument(
-        "--time",
-        type=_times,
-        default=[0.0],
-        metavar="SECONDS",
-        help="the moment of the wind the frames draw (default 0)",
-    )
+    _time_option(q, "SECONDS", "both frames of each comparison")
     q.add_argument(
         "--time-step",
         type=float,
