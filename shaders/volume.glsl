@@ -292,16 +292,19 @@ void main() {
         }
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
+        // the wind: read where the bent blades here stood at rest, moved along the slice
+        vec3 rest = wind_unbend(shear, y);  // (y, 0, 0) in still air
+        vec2 at = hit_x ? vec2(h.x, h.z - rest.z) : vec2(h.x - rest.y, h.z);
         // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end (the bits of the
-        // cell the hit lies in: a macro-cell's, or the neighbour's a ray ran on into)
-        vec2 cell = floor(h.xz);
+        // cell that point lies in: a macro-cell's, or the neighbour's a ray ran on into; a
+        // blade the wind bends over a cell's edge keeps its own cell's bits)
+        vec2 cell = floor(at);
         if (cell != mirror_cell) {  // a ray crosses N slices a cell: one fetch per cell
             mirror_cell = cell;
             s = cell_mirror(v_origin + cell, v_mirror);
         }
         if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
-        vec3 rest = wind_unbend(shear, y);  // (y, 0, 0) in still air
-        float u = fract((hit_x ? s.y * (h.z - rest.z) : s.x * (h.x - rest.y)));
+        float u = fract((hit_x ? s.y * at.y : s.x * at.x));
         vec2 uv = atlas_uv(u, rest.x / u_height, hit_x ? slice : u_slices + slice, rows, lod);
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
