@@ -179,3 +179,43 @@ def bend(c1: np.ndarray, c2: np.ndarray, lean_xz: np.ndarray) -> tuple[np.ndarra
     b2 = c2 + move
     scale = rest / np.maximum(curve_length(b1, b2), 1e-12)
     return b1 * scale[..., None], b2 * scale[..., None]
+
+
+def curve_tangent(c1: np.ndarray, c2: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """B'(t) = 2 (1 - 2t) c1 + 2t c2."""
+    t = np.asarray(t, np.float64)[..., None]
+    return 2.0 * (1.0 - 2.0 * t) * np.asarray(c1) + 2.0 * t * np.asarray(c2)
+
+
+def turn(v: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """v (..., 3) turned by the rotation that takes unit a to unit b (Rodrigues), as
+    shaders/_wind.glsl's turn."""
+    k = np.cross(a, b)
+    s = np.linalg.norm(k, axis=-1, keepdims=True)
+    c = (a * b).sum(axis=-1, keepdims=True)
+    k = k / np.maximum(s, 1e-12)
+    out = v * c + np.cross(k, v) * s + k * (k * v).sum(axis=-1, keepdims=True) * (1.0 - c)
+    return np.where(s < 1e-6, v, out)
+
+
+def bend_vertices(vertices: np.ndarray, lean_xz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Positions and normals of a patch's vertices (core/patch.py VERTEX_DTYPE) with every
+    blade bent by the tip displacement `lean_xz` ((2,) or one per vertex), as the geometry
+    shader bends them: each vertex keeps its offset across the blade from the curve, its
+    normal turns with the curve's tangent."""
+    c1 = vertices["ctrl1"].astype(np.float64)
+    c2 = vertices["ctrl2"].astype(np.float64)
+    t = vertices["uv"][:, 1].astype(np.float64)
+    root = np.zeros((len(vertices), 3))
+    root[:, [0, 2]] = vertices["root"]
+    across = vertices["position"] - root - curve_point(c1, c2, t)
+    before = curve_tangent(c1, c2, t)
+    b1, b2 = bend(c1, c2, np.broadcast_to(np.asarray(lean_xz, np.float64), (len(vertices), 2)))
+    positions = root + curve_point(b1, b2, t) + across
+    after = curve_tangent(b1, b2, t)
+
+    def unit(v: np.ndarray) -> np.ndarray:
+        return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+
+    normals = turn(vertices["normal"].astype(np.float64), unit(before), unit(after))
+    return positions, normals

@@ -7,9 +7,10 @@ ambient-only view. Sun over ambient over the window is the diffuse factor the gr
 
     .venv/bin/python scripts/facing_check.py PROJECT [--type 1] [--distance 20]
         [--height-scale 0] [--elevations 5,10,20] [--azimuths 0,90,180,270]
-        [--modes geometry,image] [--predict]
+        [--modes geometry,image] [--predict] [--wind DIRECTION,STRENGTH]
 
-Azimuth 0 puts the camera at -z looking towards +z (up the ramp). Prints one JSON line a view."""
+`--wind` blows a wind of one gust over the grid (gusts 200 m across, no turbulence): the lean
+at the grid's centre is printed with each view. Azimuth 0 puts the camera at -z looking towards +z (up the ramp). Prints one JSON line a view."""
 
 from __future__ import annotations
 
@@ -34,6 +35,7 @@ def main() -> None:
     from app.scenes import CameraSpec, get_scene
     from core.facing import slope_means
     from core.project_file import load_project
+    from core.wind import Wind, lean
     from render.context import standalone
     from render.headless import HeadlessRenderer
 
@@ -49,7 +51,16 @@ def main() -> None:
         "--predict", action="store_true",
         help="also core/facing.py slope_means' upright and sheared diffuse factor at each view",
     )  # fmt: skip
+    ap.add_argument(
+        "--wind", default=None,
+        help="DIRECTION,STRENGTH: a nearly uniform wind (degrees, gust strength), else still air",
+    )  # fmt: skip
     args = ap.parse_args()
+    wind = Wind()
+    if args.wind:
+        direction, strength = (float(v) for v in args.wind.split(","))
+        wind = Wind(enabled=True, direction=direction, gust_strength=strength, gust_scale=200.0,
+                    turbulence_strength=0.0)  # fmt: skip
     project = load_project(args.project)
     params = project.params(args.type).replace(
         root_color=WHITE, tip_color=WHITE, blade_color_variation=0.0
@@ -80,6 +91,9 @@ def main() -> None:
             camera_spec = CameraSpec(eye, (CENTRE, 0.5 * hs, CENTRE), 300.0)
             placed = dataclasses.replace(scene, cameras={"default": camera_spec})
             row: dict = {"elevation": elevation, "azimuth": azimuth, "height_scale": hs}
+            if wind.enabled:
+                centre = lean(wind, np.array([CENTRE, CENTRE]), 0.0)
+                row["lean"] = [round(float(v), 3) for v in centre]
             for mode in args.modes.split(","):
                 seen = {}
                 for view, (sun, ambient) in {
@@ -87,6 +101,7 @@ def main() -> None:
                     "sun": (WHITE, BLACK),
                 }.items():
                     doc = placed.document()
+                    doc.wind = wind
                     doc.light = dataclasses.replace(
                         project.light, sun_color=sun, ambient_color=ambient, soil_color=BLACK,
                         sky_color=BLACK,
@@ -115,7 +130,43 @@ def main() -> None:
                 )  # fmt: skip
                 row["model"] = {"upright": round(float(upright[0]), 3),
                                 "sheared": round(float(sheared[0]), 3)}  # fmt: skip
+                if wind.enabled:
+                    still, bent = lean_means(
+                        vertices, canopy, project.light.sun_direction,
+                        project.light.translucency, to_eye[None, :],
+                        np.array([[0.0, 0.0], row["lean"]]),
+                    )[:, 0]  # fmt: skip
+                    row["model"]["bent_over_still"] = round(float(bent / still), 4)
             print(json.dumps(row), flush=True)
+
+
+def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans, sample=3000):
+    """The blades' mean diffuse factor seen from `to_eye` ((m, 3)) with every blade bent by
+    each tip displacement of `leans` ((j, 2)): (j, m), as core/facing.py's tables weigh it
+    (|n · e| times the share of a view from e's elevation reaching the vertex's height at
+    rest). The model of a table for the far representations under the wind: it holds looking
+    down, not at grazing views (README, wind)."""
+    from core.facing import GRAZING
+    from core.wind import bend_vertices
+
+    keep = np.flatnonzero(np.linalg.norm(vertices["normal"], axis=1) > 1e-6)
+    keep = keep[np.linspace(0, len(keep) - 1, min(len(keep), sample)).astype(np.int64)]
+    v = vertices[keep]
+    e = np.asarray(to_eye, np.float64).reshape(-1, 3)
+    e = e / np.linalg.norm(e, axis=1, keepdims=True)
+    theta = np.arcsin(np.clip(e[:, 1], GRAZING, 1.0))
+    reach = canopy.transmittance(v["position"][:, 1].astype(np.float64), theta)
+    light = np.asarray(light_dir, np.float64)
+    out = np.zeros((len(leans), len(e)))
+    for j, lean_xz in enumerate(np.asarray(leans, np.float64).reshape(-1, 2)):
+        _, n = bend_vertices(v, lean_xz)
+        n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
+        ne = n @ e.T
+        facing_l = np.sign(ne) * (n @ light)[:, None]
+        lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
+        w = np.abs(ne) * reach
+        out[j] = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
+    return out
 
 
 if __name__ == "__main__":

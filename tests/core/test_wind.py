@@ -12,8 +12,10 @@ from core.wind import (
     MAX_LEAN,
     Wind,
     bend,
+    bend_vertices,
     curve_length,
     curve_point,
+    curve_tangent,
     lean,
     noise_map,
     sample_noise,
@@ -111,6 +113,30 @@ def test_patch_control_points_trace_the_blades():
     curve = curve_point(v["ctrl1"][:, :, 0].astype(float), v["ctrl2"][:, :, 0].astype(float), t)
     above = curve[..., 1] > 0.0  # the trajectory is clamped at the ground
     assert np.allclose((root[:, None, :] + curve)[above], centre[above], atol=1e-5)
+
+
+def test_bent_vertices_turn_with_their_blade():
+    """What the geometry shader draws, in numpy: the roots stay, the tips move with the wind,
+    each normal turns with its blade's tangent (still at right angles to it), and no wind
+    leaves the patch as it is."""
+    patch = generate_patch(PRESETS["long thin meadow grass"].replace(blade_count=200))
+    v = patch.vertices
+    still_positions, still_normals = bend_vertices(v, np.zeros(2))
+    assert np.allclose(still_positions, v["position"], atol=1e-6)
+    assert np.allclose(still_normals, v["normal"], atol=1e-6)
+    positions, normals = bend_vertices(v, np.array([0.0, 0.5]))
+    t = v["uv"][:, 1]
+    assert np.allclose(positions[t == 0.0], v["position"][t == 0.0], atol=1e-6)
+    assert (positions[t == 1.0, 2] - v["position"][t == 1.0, 2]).min() > 0.0
+    b1, b2 = bend(v["ctrl1"].astype(float), v["ctrl2"].astype(float), np.array([[0.0, 0.5]]))
+    tangent = curve_tangent(b1, b2, t.astype(float))
+    tangent /= np.linalg.norm(tangent, axis=1, keepdims=True)
+    rest = curve_tangent(v["ctrl1"].astype(float), v["ctrl2"].astype(float), t.astype(float))
+    rest /= np.linalg.norm(rest, axis=1, keepdims=True)
+    before = np.einsum("ij,ij->i", v["normal"].astype(float), rest)
+    after = np.einsum("ij,ij->i", normals, tangent)
+    assert np.allclose(after, before, atol=1e-5)  # the angle to the blade is kept
+    assert np.abs(normals - v["normal"]).max() > 0.1  # and the normals did turn
 
 
 def test_curve_length_of_a_straight_blade():
