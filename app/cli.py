@@ -155,8 +155,8 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument(
         "--out",
         type=Path,
-        help="PNG file to write; with a time sequence one animated PNG, or a PNG a frame "
-        "with a pattern such as frames/f%%04d.png",
+        help="PNG file to write; with a time sequence one animated PNG, a PNG a frame "
+        "with a pattern such as frames/f%%04d.png, or an MP4 video (name ending .mp4)",
     )
     r.add_argument("--stats", type=Path, help="JSON file for the frame statistics")
     _time_option(r, "SECONDS|FROM:TO:STEP", "or a sequence of frames")
@@ -341,7 +341,7 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise CliError("--eye and --target go together")
     if args.out is None and args.stats is None:
         raise CliError("nothing to write: give --out PNG and/or --stats JSON")
-    outs, animated = _frame_paths(args.out, len(args.time), args.size)
+    outs, kind = _frame_paths(args.out, len(args.time), args.size)
     for path in (*outs, args.stats):
         if path is not None:
             _writable(path)
@@ -376,6 +376,8 @@ def cmd_render(args: argparse.Namespace) -> int:
     if args.density is not None:
         document.density = args.density
     records, frames = [], []
+    step = args.time[1] - args.time[0] if len(args.time) > 1 else 0.0
+    video = _Video(outs[0], args.size, step) if kind == "mp4" else None
     with HeadlessRenderer(document, mode=args.only or "lod", view=args.view) as renderer:
         for index, seconds in enumerate(args.time):
             renderer.pipeline.time = seconds
@@ -383,13 +385,18 @@ def cmd_render(args: argparse.Namespace) -> int:
             records.append(
                 {**stats.to_dict(), "scene": document.name, "camera": camera_name, "time": seconds}
             )
-            if animated:
+            if video is not None:
+                video.add(image)
+            elif kind == "apng":
                 frames.append(image)
             elif outs:
                 _save_png(image, outs[index])
                 print(f"wrote {outs[index]} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
-    if animated:
-        _save_animation(frames, outs[0], args.time[1] - args.time[0])
+    if video is not None:
+        video.close()
+        print(f"wrote {outs[0]} ({len(records)} frames of {args.size[0]}x{args.size[1]}, video)")
+    if kind == "apng":
+        _save_animation(frames, outs[0], step)
         print(f"wrote {outs[0]} ({len(frames)} frames of {args.size[0]}x{args.size[1]}, animated)")
     if args.stats is not None:
         data = records[0] if len(records) == 1 else {"frames": records}
@@ -403,22 +410,28 @@ def cmd_render(args: argparse.Namespace) -> int:
 ANIMATION_BYTES = 1 << 30  # the frames an animated PNG holds in memory before it is written
 
 
-def _frame_paths(out: Path | None, count: int, size: tuple[int, int]) -> tuple[list[Path], bool]:
-    """Where the frames go, and whether as one animated PNG: --out itself for one frame; for a
-    sequence its %d pattern filled in, or without a pattern one animated PNG (APNG)."""
+def _frame_paths(out: Path | None, count: int, size: tuple[int, int]) -> tuple[list[Path], str]:
+    """Where the frames go, and how: --out itself for one frame ("png"); for a sequence its %d
+    pattern filled in ("png"), an MP4 video for a .mp4 name ("mp4"), or else one animated PNG
+    ("apng")."""
     if out is None:
-        return [], False
+        return [], "png"
+    video = out.suffix.lower() == ".mp4"
     if count == 1:
-        return [out], False
+        if video:
+            raise CliError(f"--out {out}: a video needs a time sequence, e.g. --time 0:2:0.04")
+        return [out], "png"
+    if video:
+        return [out], "mp4"
     if "%" not in str(out):
         need = count * size[0] * size[1] * 3
         if need > ANIMATION_BYTES:
             raise CliError(
                 f"--out {out}: {count} frames of {size[0]}x{size[1]} are too many for one "
                 f"animated PNG ({need / 2**30:.1f} GB in memory); give a pattern with %d, e.g. "
-                "frames/f%04d.png, for a PNG a frame"
+                "frames/f%04d.png, for a PNG a frame, or a .mp4 name for a video"
             )
-        return [out], True
+        return [out], "apng"
     try:
         paths = [Path(str(out) % i) for i in range(count)]
     except (TypeError, ValueError):
@@ -427,7 +440,43 @@ def _frame_paths(out: Path | None, count: int, size: tuple[int, int]) -> tuple[l
         ) from None
     if len(set(paths)) != count:
         raise CliError(f"--out {out}: the pattern gives every frame the same name; use %04d")
-    return paths, False
+    return paths, "png"
+
+
+class _Video:
+    """An H.264 MP4 written frame by frame through imageio-ffmpeg (its own ffmpeg binary):
+    frames of odd width or height gain a copied last column or row (the codec's 4:2:0 colour
+    needs even sizes)."""
+
+    def __init__(self, path: Path, size: tuple[int, int], step_s: float) -> None:
+        import imageio_ffmpeg
+
+        self.path = path
+        self.pad = (size[1] % 2, size[0] % 2)
+        even = (size[0] + self.pad[1], size[1] + self.pad[0])
+        self._writer = imageio_ffmpeg.write_frames(
+            str(path), even, fps=1.0 / step_s, quality=8, macro_block_size=2
+        )
+        self._send(None)  # starts ffmpeg
+
+    def _send(self, frame) -> None:
+        try:
+            self._writer.send(frame)
+        except (OSError, RuntimeError) as exc:
+            raise CliError(f"cannot write {self.path}: {exc}") from None
+
+    def add(self, image) -> None:
+        import numpy as np
+
+        if any(self.pad):
+            image = np.pad(image, ((0, self.pad[0]), (0, self.pad[1]), (0, 0)), mode="edge")
+        self._send(np.ascontiguousarray(image))
+
+    def close(self) -> None:
+        try:
+            self._writer.close()
+        except (OSError, RuntimeError) as exc:
+            raise CliError(f"cannot write {self.path}: {exc}") from None
 
 
 def _save_animation(frames: list, path: Path, step_s: float) -> None:

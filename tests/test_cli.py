@@ -347,6 +347,31 @@ def test_render_a_time_sequence_of_the_wind(tmp_path):
         assert np.array_equal(np.asarray(apng.convert("RGB")), frames[2])
 
 
+def test_render_a_video_of_the_wind(tmp_path):
+    """--out NAME.mp4 with a time sequence writes an H.264 video at one frame per step, its
+    frames the rendered ones (within the codec's loss), odd sizes padded to even; one moment
+    is no video."""
+    import imageio_ffmpeg
+
+    common = ["render", "--scene", "patch-grid", "--size", "161x121", "--camera", "grazing"]
+    video, first = tmp_path / "gust.mp4", tmp_path / "first.png"
+    r = sward(*common, "--wind", "on", "--time", "0:1:0.25", "--out", str(video))
+    assert r.returncode == 0, r.stderr
+    r = sward(*common, "--wind", "on", "--time", "0", "--out", str(first))
+    assert r.returncode == 0, r.stderr
+    reader = imageio_ffmpeg.read_frames(str(video))
+    meta = next(reader)
+    assert tuple(meta["size"]) == (162, 122) and meta["fps"] == 4.0
+    frames = [np.frombuffer(f, np.uint8).reshape(122, 162, 3) for f in reader]
+    assert len(frames) == 5
+    rendered = np.asarray(Image.open(first).convert("RGB")).astype(int)
+    assert np.abs(frames[0][:121, :161].astype(int) - rendered).mean() < 6.0
+    assert np.abs(frames[0].astype(int) - frames[4]).mean() > 0.5  # the grass moved
+    r = sward(*common, "--time", "1", "--out", str(tmp_path / "one.mp4"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "a video needs a time sequence" in r.stderr
+
+
 def test_quality_along_a_path_while_the_wind_blows(tmp_path):
     """--time-step: each path frame is that much wind later; with the wind on the still camera
     sees the grass move, so the reference changes between frames by more than without."""
