@@ -27,10 +27,13 @@ lint: $(STAMP)
 test: system-deps lint
 	$(VENV)/bin/sward info
 	# core/ and the designer's controllers with Qt and GL unimportable (tests/blocked.py)
-	$(PY) -m pytest -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app
+	$(PY) -m pytest -n 2 -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app
 	# The window tests (marker gui, under Xvfb) run in a process of their own; the window
 	# draws no GL (its frames come from render processes), the other tests use standalone EGL.
-	$(PY) -m pytest -m "not gui" --ignore=tests/core --ignore=tests/app
+	# Two workers (pytest-xdist): much of a GL test is Python, process starts and llvmpipe's
+	# single-threaded shader compiles (on 2 cores: 340 s -> 234 s; the window tests, whose
+	# render processes keep both cores busy, gain little and run alone).
+	$(PY) -m pytest -n 2 -m "not gui" --ignore=tests/core --ignore=tests/app
 	QT_QPA_PLATFORM=xcb $(PY) -m pytest -m gui
 
 bench: $(STAMP)
