@@ -8,6 +8,7 @@ ambient-only view. Sun over ambient over the window is the diffuse factor the gr
     .venv/bin/python scripts/facing_check.py PROJECT [--type 1] [--distance 20]
         [--height-scale 0] [--elevations 5,10,20] [--azimuths 0,90,180,270]
         [--modes geometry,image] [--predict] [--wind DIRECTION,STRENGTH]
+        [--sun-elevation DEGREES] [--translucency T]
 
 `--wind` blows a wind of one gust over the grid (gusts 200 m across, no turbulence): the lean
 at the grid's centre is printed with each view. Azimuth 0 puts the camera at -z looking towards +z (up the ramp). Prints one JSON line a view."""
@@ -55,6 +56,8 @@ def main() -> None:
         "--wind", default=None,
         help="DIRECTION,STRENGTH: a nearly uniform wind (degrees, gust strength), else still air",
     )  # fmt: skip
+    ap.add_argument("--sun-elevation", type=float, help="degrees (default: the project's)")
+    ap.add_argument("--translucency", type=float, help="0 … 1 (default: the project's)")
     args = ap.parse_args()
     wind = Wind()
     if args.wind:
@@ -62,6 +65,10 @@ def main() -> None:
         wind = Wind(enabled=True, direction=direction, gust_strength=strength, gust_scale=200.0,
                     turbulence_strength=0.0)  # fmt: skip
     project = load_project(args.project)
+    if args.sun_elevation is not None:
+        project.light = dataclasses.replace(project.light, sun_elevation=args.sun_elevation)
+    if args.translucency is not None:
+        project.light = dataclasses.replace(project.light, translucency=args.translucency)
     params = project.params(args.type).replace(
         root_color=WHITE, tip_color=WHITE, blade_color_variation=0.0
     )
