@@ -151,8 +151,8 @@ def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans, sample=
     """The blades' mean diffuse factor seen from `to_eye` ((m, 3)) with every blade bent by
     each tip displacement of `leans` ((j, 2)): (j, m), as core/facing.py's tables weigh it:
     |n · e| times the share of a view from e's elevation that reaches the vertex's bent height,
-    the bent canopy stretched back to the height at rest (with the height at rest the model
-    was far off: +22 % where the blades measure -3.6 %). The model of a table for the far
+    the bent canopy stretched back to the height at rest (weighing the vertices by their
+    heights at rest, the model predicted brighter blades where they measure darker). The model of a table for the far
     representations under the wind: it holds looking down, not at grazing views (README,
     wind)."""
     from core.facing import GRAZING
