@@ -378,22 +378,29 @@ def cmd_render(args: argparse.Namespace) -> int:
     records, frames = [], []
     step = args.time[1] - args.time[0] if len(args.time) > 1 else 0.0
     video = _Video(outs[0], args.size, step) if kind == "mp4" else None
-    with HeadlessRenderer(document, mode=args.only or "lod", view=args.view) as renderer:
-        for index, seconds in enumerate(args.time):
-            renderer.pipeline.time = seconds
-            image, stats = renderer.render(camera, args.size, measure=True)
-            records.append(
-                {**stats.to_dict(), "scene": document.name, "camera": camera_name, "time": seconds}
-            )
-            if video is not None:
-                video.add(image)
-            elif kind == "apng":
-                frames.append(image)
-            elif outs:
-                _save_png(image, outs[index])
-                print(f"wrote {outs[index]} ({args.size[0]}x{args.size[1]}, {stats.t_a_ms:.1f} ms)")
+    try:
+        with HeadlessRenderer(document, mode=args.only or "lod", view=args.view) as renderer:
+            for index, seconds in enumerate(args.time):
+                renderer.pipeline.time = seconds
+                image, stats = renderer.render(camera, args.size, measure=True)
+                records.append(
+                    {**stats.to_dict(), "scene": document.name, "camera": camera_name,
+                     "time": seconds}
+                )  # fmt: skip
+                if video is not None:
+                    video.add(image)
+                elif kind == "apng":
+                    frames.append(image)
+                elif outs:
+                    _save_png(image, outs[index])
+                    print(
+                        f"wrote {outs[index]} ({args.size[0]}x{args.size[1]}, "
+                        f"{stats.t_a_ms:.1f} ms)"
+                    )
+    finally:
+        if video is not None:
+            video.close()  # ffmpeg ends (on an error, with the frames drawn so far)
     if video is not None:
-        video.close()
         print(f"wrote {outs[0]} ({len(records)} frames of {args.size[0]}x{args.size[1]}, video)")
     if kind == "apng":
         _save_animation(frames, outs[0], step)
