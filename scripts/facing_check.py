@@ -11,7 +11,8 @@ ambient-only view. Sun over ambient over the window is the diffuse factor the gr
         [--sun-elevation DEGREES] [--translucency T]
 
 `--wind` blows a wind of one gust over the grid (gusts 200 m across, no turbulence): the lean
-at the grid's centre is printed with each view. Azimuth 0 puts the camera at -z looking towards +z (up the ramp). Prints one JSON line a view."""
+at the grid's centre is printed with each view. Azimuth 0 puts the camera at -z looking
+towards +z (up the ramp). Prints one JSON line a view."""
 
 from __future__ import annotations
 
@@ -61,9 +62,12 @@ def main() -> None:
     args = ap.parse_args()
     wind = Wind()
     if args.wind:
-        direction, strength = (float(v) for v in args.wind.split(","))
-        wind = Wind(enabled=True, direction=direction, gust_strength=strength, gust_scale=200.0,
-                    turbulence_strength=0.0)  # fmt: skip
+        try:
+            direction, strength = (float(v) for v in args.wind.split(","))
+            wind = Wind(enabled=True, direction=direction, gust_strength=strength,
+                        gust_scale=200.0, turbulence_strength=0.0)  # fmt: skip
+        except ValueError as exc:
+            ap.error(f"--wind {args.wind}: give DIRECTION,STRENGTH ({exc})")
     project = load_project(args.project)
     if args.sun_elevation is not None:
         project.light = dataclasses.replace(project.light, sun_elevation=args.sun_elevation)
