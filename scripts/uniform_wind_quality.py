@@ -5,9 +5,12 @@ from blades bent by a constant lean, the volume's shear switched off) it shows w
 bent blades would do to the wind-on agreement.
 
     .venv/bin/python scripts/uniform_wind_quality.py [--direction 90] [--strength 0.6]
-        [--wind on] [--scene bench] [--camera zones] [--size 480x270]
+        [--wind on] [--scene bench] [--camera zones] [--size 480x270] [--brightness]
 
-Prints one JSON line: × the floor over the frame and per technique's region."""
+Prints one JSON line: × the floor over the frame and per technique's region. With
+`--brightness`, instead: how much each representation drawn alone (`--only`) darkens under the
+wind, as the change of the green channel's mean (0 … 255) over bands of rows (the bench's zones
+camera: 110–140 image-based, 140–200 volume, 200–270 geometry in the LOD frame)."""
 
 from __future__ import annotations
 
@@ -31,6 +34,7 @@ def main() -> None:
     ap.add_argument("--scene", default="bench")
     ap.add_argument("--camera", default="zones")
     ap.add_argument("--size", default="480x270")
+    ap.add_argument("--brightness", action="store_true", help="--only frames' change by rows")
     args = ap.parse_args()
     try:
         size = tuple(int(v) for v in args.size.split("x"))
@@ -40,6 +44,9 @@ def main() -> None:
     except ValueError as exc:
         ap.error(str(exc))
     doc = get_scene(args.scene).document()
+    if args.brightness:
+        print(json.dumps(brightness(doc, args.camera, size, wind)))
+        return
     doc.wind = wind
     run = QualityRun(doc, size, 1e9)
     try:
@@ -51,6 +58,28 @@ def main() -> None:
     }
     print(json.dumps({"wind": args.wind, "direction": args.direction,
                       "frame": round(row["over_floor"], 3), **regions}))  # fmt: skip
+
+
+BANDS = ((110, 140), (140, 170), (170, 200), (200, 230), (230, 270))
+
+
+def brightness(doc, camera: str, size: tuple[int, int], wind) -> dict:
+    """Per representation drawn alone: the green mean's change (wind − still) per row band."""
+    from core.wind import Wind
+    from render.context import standalone
+    from render.headless import HeadlessRenderer
+
+    ctx = standalone()
+    out = {}
+    for mode in ("geometry", "volume", "image"):
+        means = []
+        for blowing in (Wind(enabled=False), wind):
+            doc.wind = blowing
+            with HeadlessRenderer(doc, ctx, mode=mode) as renderer:
+                frame = renderer.render(doc.camera(camera), size, measure=False)[0]
+            means.append([float(frame[a:b, :, 1].mean()) for a, b in BANDS])
+        out[mode] = [round(w - s, 1) for s, w in zip(*means, strict=True)]
+    return {"rows": [f"{a}-{b}" for a, b in BANDS], **out}
 
 
 if __name__ == "__main__":
