@@ -6,6 +6,7 @@ bent blades would do to the wind-on agreement.
 
     .venv/bin/python scripts/uniform_wind_quality.py [--direction 90] [--strength 0.6]
         [--wind on] [--scene bench] [--camera zones] [--size 480x270] [--brightness]
+        [--gusts] [--no-tiling]
 
 Prints one JSON line: × the floor over the frame and per technique's region. With
 `--brightness`, instead: how much each representation drawn alone (`--only`) darkens under the
@@ -15,6 +16,7 @@ camera: 110–140 image-based, 140–200 volume, 200–270 geometry in the LOD f
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -35,6 +37,14 @@ def main() -> None:
     ap.add_argument("--camera", default="zones")
     ap.add_argument("--size", default="480x270")
     ap.add_argument("--brightness", action="store_true", help="--only frames' change by rows")
+    ap.add_argument(
+        "--gusts", action="store_true",
+        help="the scene's own wind (gusts and turbulence) switched on instead of the uniform one",
+    )  # fmt: skip
+    ap.add_argument(
+        "--no-tiling", action="store_true",
+        help="every cell alike (no aperiodic tiling): a capture bent one way stays so in all",
+    )  # fmt: skip
     args = ap.parse_args()
     try:
         size = tuple(int(v) for v in args.size.split("x"))
@@ -43,7 +53,12 @@ def main() -> None:
                     turbulence_strength=0.0)  # fmt: skip
     except ValueError as exc:
         ap.error(str(exc))
-    doc = get_scene(args.scene).document()
+    scene = get_scene(args.scene)
+    if args.no_tiling:
+        scene = dataclasses.replace(scene, mirror_seed=None)
+    doc = scene.document()
+    if args.gusts:
+        wind = doc.wind.replace(enabled=args.wind == "on")
     if args.brightness:
         print(json.dumps(brightness(doc, args.camera, size, wind)))
         return
@@ -56,7 +71,7 @@ def main() -> None:
     regions = {
         k: round(v["over_floor"], 2) for k, v in row["techniques"].items() if v.get("over_floor")
     }
-    print(json.dumps({"wind": args.wind, "direction": args.direction,
+    print(json.dumps({"wind": args.wind, "direction": wind.direction, "gusts": args.gusts,
                       "frame": round(row["over_floor"], 3), **regions}))  # fmt: skip
 
 
