@@ -30,7 +30,7 @@ def main() -> None:
     from core.wind import Wind
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--direction", type=float, default=90.0)
+    ap.add_argument("--direction", type=float, help="degrees (default 90, or the scene's)")
     ap.add_argument("--strength", type=float, default=0.6)
     ap.add_argument("--wind", choices=("on", "off"), default="on")
     ap.add_argument("--scene", default="bench")
@@ -48,7 +48,8 @@ def main() -> None:
     args = ap.parse_args()
     try:
         size = tuple(int(v) for v in args.size.split("x"))
-        wind = Wind(enabled=args.wind == "on", direction=args.direction,
+        direction = 90.0 if args.direction is None else args.direction
+        wind = Wind(enabled=args.wind == "on", direction=direction,
                     gust_strength=args.strength, gust_scale=200.0,
                     turbulence_strength=0.0)  # fmt: skip
     except ValueError as exc:
@@ -59,6 +60,8 @@ def main() -> None:
     doc = scene.document()
     if args.gusts:
         wind = doc.wind.replace(enabled=args.wind == "on")
+        if args.direction is not None:
+            wind = wind.replace(direction=args.direction)
     if args.brightness:
         print(json.dumps(brightness(doc, args.camera, size, wind)))
         return
