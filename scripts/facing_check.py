@@ -151,36 +151,28 @@ def main() -> None:
             print(json.dumps(row), flush=True)
 
 
-def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans, sample=3000):
+def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans):
     """The blades' mean diffuse factor seen from `to_eye` ((m, 3)) with every blade bent by
-    each tip displacement of `leans` ((j, 2)): (j, m), as core/facing.py's tables weigh it:
-    |n · e| times the share of a view from e's elevation that reaches the vertex's bent height,
-    the bent canopy stretched back to the height at rest (weighing the vertices by their
-    heights at rest, the model predicted brighter blades where they measure darker). The model of a table for the far
+    each tip displacement of `leans` ((j, 2)): (j, m). core/facing.py's slope_means weighs the
+    bent normals (on flat ground its sheared mean: |n · e| times the share of a view from e's
+    elevation that reaches the vertex), at the vertices' bent heights, the bent canopy stretched
+    back to its height at rest (weighing them at their heights at rest, the model predicted
+    brighter blades where they measure darker). The model of a table for the far
     representations under the wind: it holds looking down, not at grazing views (README,
     wind)."""
-    from core.facing import GRAZING
+    from core.facing import slope_means
     from core.wind import bend_vertices
 
-    keep = np.flatnonzero(np.linalg.norm(vertices["normal"], axis=1) > 1e-6)
-    keep = keep[np.linspace(0, len(keep) - 1, min(len(keep), sample)).astype(np.int64)]
-    v = vertices[keep]
     e = np.asarray(to_eye, np.float64).reshape(-1, 3)
-    e = e / np.linalg.norm(e, axis=1, keepdims=True)
-    theta = np.arcsin(np.clip(e[:, 1], GRAZING, 1.0))
-    rest_y = v["position"][:, 1].astype(np.float64)
-    light = np.asarray(light_dir, np.float64)
+    theta = np.arcsin(e[:, 1] / np.linalg.norm(e, axis=1))[None, :]
+    rest_top = np.percentile(vertices["position"][:, 1], 99)
     out = np.zeros((len(leans), len(e)))
     for j, lean_xz in enumerate(np.asarray(leans, np.float64).reshape(-1, 2)):
-        bent, n = bend_vertices(v, lean_xz)
-        y = bent[:, 1] * np.percentile(rest_y, 99) / max(np.percentile(bent[:, 1], 99), 1e-9)
-        reach = canopy.transmittance(y, theta)
-        n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
-        ne = n @ e.T
-        facing_l = np.sign(ne) * (n @ light)[:, None]
-        lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
-        w = np.abs(ne) * reach
-        out[j] = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
+        bent, normals = bend_vertices(vertices, lean_xz)
+        bent[:, 1] *= rest_top / max(np.percentile(bent[:, 1], 99), 1e-9)
+        out[j] = slope_means(
+            normals, bent, vertices["root"], canopy, light_dir, translucency, e, theta
+        )[1][0]
     return out
 
 
