@@ -6,7 +6,7 @@ bent blades would do to the wind-on agreement.
 
     .venv/bin/python scripts/uniform_wind_quality.py [--direction 90] [--strength 0.6]
         [--wind on] [--scene bench] [--camera zones] [--size 480x270] [--brightness]
-        [--gusts] [--no-tiling]
+        [--gusts [--turbulence S] [--gust-scale M]] [--no-tiling]
 
 Prints one JSON line: × the floor over the frame and per technique's region. With
 `--brightness`, instead: how much each representation drawn alone (`--only`) darkens under the
@@ -45,6 +45,14 @@ def main() -> None:
         "--no-tiling", action="store_true",
         help="every cell alike (no aperiodic tiling): a capture bent one way stays so in all",
     )  # fmt: skip
+    ap.add_argument(
+        "--turbulence", type=float,
+        help="with --gusts: the turbulence strength instead of the scene's",
+    )  # fmt: skip
+    ap.add_argument(
+        "--gust-scale", type=float,
+        help="with --gusts: the gusts' size in world units instead of the scene's",
+    )  # fmt: skip
     args = ap.parse_args()
     try:
         size = tuple(int(v) for v in args.size.split("x"))
@@ -62,6 +70,10 @@ def main() -> None:
         wind = doc.wind.replace(enabled=args.wind == "on")
         if args.direction is not None:
             wind = wind.replace(direction=args.direction)
+        if args.turbulence is not None:
+            wind = wind.replace(turbulence_strength=args.turbulence)
+        if args.gust_scale is not None:
+            wind = wind.replace(gust_scale=args.gust_scale)
     if args.brightness:
         print(json.dumps(brightness(doc, args.camera, size, wind)))
         return

@@ -4,7 +4,7 @@ over a band of rows, fitted against the lean's size there (from `--view wind`, b
 change ≈ slope · |lean| + offset. The blades and the volume should follow it alike.
 
     .venv/bin/python scripts/wind_response.py [--direction 0] [--scene bench] [--camera zones]
-        [--rows 140:200] [--tiling]
+        [--rows 140:200] [--tiling] [--turbulence S] [--gust-scale M]
 
 Prints one JSON line: per representation the slope, offset, R² and the change's mean and
 spread, and the correlation of the two changes. Without --tiling every cell is alike."""
@@ -38,6 +38,8 @@ def main() -> None:
     ap.add_argument("--camera", default="zones")
     ap.add_argument("--rows", default="140:200", help="FIRST:END rows of the 480 × 270 frame")
     ap.add_argument("--tiling", action="store_true", help="keep the aperiodic tiling")
+    ap.add_argument("--turbulence", type=float, help="turbulence strength (default: the scene's)")
+    ap.add_argument("--gust-scale", type=float, help="gust size in world units (default: the scene's)")
     args = ap.parse_args()
     try:
         first, end = (int(v) for v in args.rows.split(":"))
@@ -51,6 +53,10 @@ def main() -> None:
     wind = doc.wind.replace(enabled=True)
     if args.direction is not None:
         wind = wind.replace(direction=args.direction)
+    if args.turbulence is not None:
+        wind = wind.replace(turbulence_strength=args.turbulence)
+    if args.gust_scale is not None:
+        wind = wind.replace(gust_scale=args.gust_scale)
     ctx = standalone()
 
     def draw(mode: str, on: bool, view: str = "shaded") -> np.ndarray:
