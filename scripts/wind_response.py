@@ -39,7 +39,9 @@ def main() -> None:
     ap.add_argument("--rows", default="140:200", help="FIRST:END rows of the 480 × 270 frame")
     ap.add_argument("--tiling", action="store_true", help="keep the aperiodic tiling")
     ap.add_argument("--turbulence", type=float, help="turbulence strength (default: the scene's)")
-    ap.add_argument("--gust-scale", type=float, help="gust size in world units (default: the scene's)")
+    ap.add_argument(
+        "--gust-scale", type=float, help="gust size in world units (default: the scene's)"
+    )
     args = ap.parse_args()
     try:
         first, end = (int(v) for v in args.rows.split(":"))
