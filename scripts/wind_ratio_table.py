@@ -1,15 +1,16 @@
-"""How much brighter or darker the blades turn under a uniform lean, against the volume, seen
-from one elevation and distance at several azimuths: the bench's grass with its own shading
-(colours, AO, light), a nearly uniform wind (gusts 200 m across, strength 0.6: a lean of about
-0.3), each representation drawn alone (`--only`) at 160 × 90, the green channel's mean over a
-window around the target, wind on over still.
+"""How much brighter or darker the blades turn under a uniform lean, against the volume, by
+the view's elevation and azimuth: a flat grid of the bench's grass (or `--grass SCENE:INDEX`, that
+scene's grass type, light and wind) with its own shading, a nearly uniform wind along the
+scene's heading (gusts 200 m across, strength 0.6: a lean of about 0.3), each representation
+drawn alone (`--only`) at 160 × 90 from an eye `--eye-height` over the ground, the green
+channel's mean over a window around the target, wind on over still.
 
-    .venv/bin/python scripts/wind_ratio_table.py [--direction 0] [--azimuths 135,180,225]
-        [--elevation 6] [--distance 12]
+    .venv/bin/python scripts/wind_ratio_table.py [--direction D] [--grass meadow:1]
+        [--elevations 5,10,15,25] [--azimuths 0,45,90,135,180,225,270,315] [--cells 16]
 
 Azimuth 0 puts the camera at -z looking towards +z (as scripts/facing_check.py). Prints one JSON
-line: per azimuth the blades' ratio, the volume's, and the blades' over the volume's, which is
-what the volume would have to be multiplied by to follow the blades."""
+line: per elevation and azimuth the blades' ratio, the volume's, and the blades' over the
+volume's ("ratio"), the table docs/experiments/wind-light-table.patch reads."""
 
 from __future__ import annotations
 
@@ -25,50 +26,79 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 SIZE = (160, 90)
-WINDOW = (slice(40, 55), slice(40, 120))
+WINDOW = (slice(38, 52), slice(40, 120))  # around the target, at the frame's centre
 
 
 def main() -> None:
-    from app.scenes import CameraSpec, get_scene
-    from core.wind import Wind
+    from app.scenes import get_scene
+    from core.camera import Camera
     from render.context import standalone
     from render.headless import HeadlessRenderer
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--direction", type=float, default=0.0, help="the wind's, degrees")
-    ap.add_argument("--azimuths", default="135,180,225")
-    ap.add_argument("--elevation", type=float, default=6.0)
-    ap.add_argument("--distance", type=float, default=12.0)
+    ap.add_argument("--direction", type=float, help="the wind's, degrees (default: the scene's)")
+    ap.add_argument("--azimuths", default="0,45,90,135,180,225,270,315")
+    ap.add_argument("--elevations", default="5,10,15,25")
+    ap.add_argument("--eye-height", type=float, default=2.0, help="over the ground, world units")
+    ap.add_argument("--strength", type=float, default=0.6, help="gust strength (lean about half)")
+    ap.add_argument("--cells", type=int, default=16, help="a flat grid of N × N of the bench")
+    ap.add_argument(
+        "--grass", default=None,
+        help="SCENE:INDEX: that scene's grass type (and light, wind) on the flat grid instead",
+    )  # fmt: skip
     args = ap.parse_args()
     try:
         azimuths = [float(v) for v in args.azimuths.split(",")]
+        elevations = [float(v) for v in args.elevations.split(",")]
     except ValueError:
-        ap.error(f"--azimuths {args.azimuths}: give degrees separated by commas")
-    scene = dataclasses.replace(get_scene("bench"), mirror_seed=None)
+        ap.error("--azimuths / --elevations: give degrees separated by commas")
+    scene = dataclasses.replace(
+        get_scene("bench").resized(args.cells, args.cells), mirror_seed=None
+    )
+    doc = scene.document()
+    if args.grass:
+        name, _, index = args.grass.partition(":")
+        source = get_scene(name).document()
+        grass = source.grass_types[int(index or 0)]
+        doc.set_params(0, grass.params)
+        doc.set_lod(0, grass.lod)
+        doc.light = source.light
+        doc.wind = source.wind
+    wind = doc.wind.replace(enabled=True, gust_strength=args.strength, gust_scale=200.0,
+                            turbulence_strength=0.0)  # fmt: skip
+    if args.direction is not None:
+        wind = wind.replace(direction=args.direction)
     ctx = standalone()
-    el = math.radians(args.elevation)
-    level = args.distance * math.cos(el)
-    rows = []
-    for azimuth in azimuths:
-        az = math.radians(azimuth)
-        eye = (level * math.sin(az), args.distance * math.sin(el), -level * math.cos(az))
-        placed = dataclasses.replace(scene, cameras={"default": CameraSpec(eye, (0, 0, 0), 300.0)})
-        doc = placed.document()
-        camera = doc.camera("default")
-        means = {}
-        for mode in ("geometry", "volume"):
-            for on in (False, True):
-                doc.wind = Wind(enabled=on, direction=args.direction, gust_strength=0.6,
-                                gust_scale=200.0, turbulence_strength=0.0)  # fmt: skip
-                with HeadlessRenderer(doc, ctx, mode=mode) as renderer:
-                    image = renderer.render(camera, SIZE, measure=False)[0]
-                means[mode, on] = float(image[WINDOW][..., 1].astype(np.float64).mean())
-        blades = means["geometry", True] / means["geometry", False]
-        volume = means["volume", True] / means["volume", False]
-        rows.append({"azimuth": azimuth, "blades": round(blades, 3), "volume": round(volume, 3),
-                     "ratio": round(blades / volume, 3)})  # fmt: skip
-    print(json.dumps({"direction": args.direction, "elevation": args.elevation,
-                      "distance": args.distance, "views": rows}))  # fmt: skip
+    renderers = {mode: HeadlessRenderer(doc, ctx, mode=mode) for mode in ("geometry", "volume")}
+    table: dict[str, list] = {"blades": [], "volume": [], "ratio": []}
+    try:
+        for elevation in elevations:
+            el = math.radians(elevation)
+            distance = args.eye_height / math.sin(el)
+            level = distance * math.cos(el)
+            rows: dict[str, list] = {k: [] for k in table}
+            for azimuth in azimuths:
+                az = math.radians(azimuth)
+                eye = (level * math.sin(az), args.eye_height, -level * math.cos(az))
+                camera = Camera.from_eye_target(eye, (0.0, 0.0, 0.0), fov_y=50.0)
+                means = {}
+                for on in (False, True):
+                    doc.wind = wind.replace(enabled=on)
+                    for mode, renderer in renderers.items():
+                        image = renderer.render(camera, SIZE, measure=False)[0][WINDOW]
+                        means[mode, on] = float(image[..., 1].astype(np.float64).mean())
+                blades = means["geometry", True] / means["geometry", False]
+                volume = means["volume", True] / means["volume", False]
+                rows["blades"].append(round(blades, 4))
+                rows["volume"].append(round(volume, 4))
+                rows["ratio"].append(round(blades / volume, 4))
+            for k in table:
+                table[k].append(rows[k])
+    finally:
+        for renderer in renderers.values():
+            renderer.release()
+    print(json.dumps({"direction": wind.direction, "strength": args.strength,
+                      "elevations": elevations, "azimuths": azimuths, **table}))  # fmt: skip
 
 
 if __name__ == "__main__":
