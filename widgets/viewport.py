@@ -10,7 +10,8 @@ While the document's wind blows, the view animates: each state asked for carries
 the wind (seconds of wind since it started blowing here), and the next moment is asked for as
 soon as the full-quality frame of the last one is on screen, or after ANIMATION_STEP_MS when
 that frame is slower (a CPU renderer then shows drafts while the wind blows, as while the
-camera moves). Switching the wind off holds the grass still.
+camera moves). Switching the wind off holds the grass still, and so does the Quality view while
+it is on (its all-geometry reference takes seconds: the next moment would give it up).
 
 The Quality view: once a full-quality frame of the newest state is on screen, the full-quality
 process draws an all-geometry reference of the same camera in the background and answers with
@@ -149,9 +150,11 @@ class GrassViewport(QWidget):
         return self._wind_clock is not None
 
     def _on_wind(self, wind: Wind) -> None:
-        if wind.enabled and self._wind_clock is None:
+        # the Quality view holds the wind at its moment: its reference takes seconds, and a
+        # frame of the next moment would give it up before it is drawn
+        if wind.enabled and not self.quality and self._wind_clock is None:
             self._wind_clock = monotonic() - self.wind_time  # on from where it stopped
-        elif not wind.enabled and self._wind_clock is not None:
+        elif (not wind.enabled or self.quality) and self._wind_clock is not None:
             self.wind_time = monotonic() - self._wind_clock
             self._wind_clock = None
             self._wind_step.stop()
@@ -175,6 +178,10 @@ class GrassViewport(QWidget):
         """The Quality view: the difference against all-geometry over the frame, when at rest."""
         self.quality = on
         self._quality, self._quality_asked = None, 0
+        blew = self.animating
+        self._on_wind(self.document.wind)  # held while the Quality view is on
+        if self.animating and not blew:
+            self.request_frame()  # on again from the moment it was held at
         self._ask_quality()
         self.update()
 

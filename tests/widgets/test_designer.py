@@ -357,7 +357,7 @@ def test_the_readme_names_the_menus_as_they_are(window):
 def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbot):
     """Ctrl+6: at rest, an all-geometry frame is drawn in the background; the difference lies
     over the frame as a heat map and its figures are in the status line; a camera move gives
-    them up until the view rests again."""
+    them up until the view rests again; a blowing wind waits while the view is on."""
     vp = window.viewport
     wait_for_slices(window, qtbot)
     plain = vp.grab().toImage()
@@ -383,13 +383,21 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
 
     shown, before = image(vp.grab().toImage()), image(plain)
     assert np.abs(shown - before).mean() > 10  # the heat map lies over the frame
+    # the wind starts blowing: the Quality view holds it at its moment, so the reference of the
+    # new view is drawn (each next moment would give it up)
+    window.wind_action.trigger()
+    assert window.document.wind.enabled and not vp.animating
+    held = vp.wind_time
     with qtbot.waitSignal(vp.frame_rendered, timeout=20000):
         vp.camera.orbit(15.0, 0.0)
         vp.request_frame()
     assert vp.quality_figures is None  # the new view's difference is not drawn yet
     qtbot.waitUntil(lambda: vp.quality_figures is not None, timeout=120000)
+    assert vp.wind_time == held
     qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)  # off again
     assert not vp.quality and not window.quality_action.isChecked()
+    assert vp.animating  # the wind blows on from where it was held
+    qtbot.waitUntil(lambda: vp.wind_time > held, timeout=20000)
 
 
 def test_the_wind_dock_animates_the_grass_undoably_and_is_saved(window, qtbot, tmp_path):
