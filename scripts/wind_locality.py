@@ -28,11 +28,15 @@ STRENGTHS = (0.15, 0.4, 0.65, 0.9)
 
 
 def interpolate(x: np.ndarray, xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
-    """Per pixel, piecewise-linear interpolation of ys ((k, h, w)) over xs ((k, h, w)) at x."""
-    out = ys[0] + (x - xs[0]) * (ys[1] - ys[0]) / np.maximum(xs[1] - xs[0], 1e-9)
-    for k in range(1, xs.shape[0] - 1):
-        seg = ys[k] + (x - xs[k]) * (ys[k + 1] - ys[k]) / np.maximum(xs[k + 1] - xs[k], 1e-9)
-        out = np.where(x > xs[k], seg, out)
+    """Per pixel, piecewise-linear interpolation of ys ((k, h, w)) over xs ((k, h, w), rising)
+    at x, held at the ends; where two xs meet (no grass: no lean), the lower one's y."""
+    x = np.clip(x, xs[0], xs[-1])
+    out = ys[0].copy()
+    for k in range(xs.shape[0] - 1):
+        dx = xs[k + 1] - xs[k]
+        t = np.where(dx > 1e-4, (x - xs[k]) / np.where(dx > 1e-4, dx, 1.0), 0.0)
+        seg = ys[k] + np.clip(t, 0.0, 1.0) * (ys[k + 1] - ys[k])
+        out = seg if k == 0 else np.where(x > xs[k], seg, out)
     return out
 
 
