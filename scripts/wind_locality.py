@@ -5,6 +5,7 @@ each pixel the change under the gusts (wind on − still, green channel, blurred
 predicted by interpolating the uniform winds' changes at that pixel in the gusts' lean there.
 
     .venv/bin/python scripts/wind_locality.py [--direction 0] [--rows 140:200]
+        [--scene bench] [--camera zones] [--save maps.npz]
 
 Prints one JSON line: per representation the change's mean and spread, the prediction's, their
 correlation over the rows, and the uniform winds' mean lean and change there. A correlation
@@ -53,6 +54,10 @@ def main() -> None:
     ap.add_argument("--scene", default="bench")
     ap.add_argument("--camera", default="zones")
     ap.add_argument("--rows", default="140:200", help="FIRST:END rows of the 480 × 270 frame")
+    ap.add_argument(
+        "--save", type=Path,
+        help="an .npz of the per-pixel maps: leans, the uniform winds' and the gusts' changes",
+    )  # fmt: skip
     args = ap.parse_args()
     try:
         first, end = (int(v) for v in args.rows.split(":"))
@@ -82,6 +87,7 @@ def main() -> None:
     gust_lean = lean_size(gusts)
     rows = slice(first, end)
     out: dict = {"direction": args.direction, "rows": args.rows}
+    maps: dict[str, np.ndarray] = {"uniform_leans": leans, "gust_lean": gust_lean}
     for mode in ("geometry", "volume"):
         still = draw(mode, gusts.replace(enabled=False))[..., 1]
 
@@ -89,7 +95,9 @@ def main() -> None:
             return gaussian_filter(draw(mode, wind)[..., 1] - still, SIGMA)
 
         changes = np.stack([change(w) for w in uniform])
-        actual = change(gusts)[rows].ravel()
+        gust_change = change(gusts)
+        maps[f"{mode}_uniform"], maps[f"{mode}_gusts"] = changes, gust_change
+        actual = gust_change[rows].ravel()
         predicted = interpolate(gust_lean, leans, changes)[rows].ravel()
         out[mode] = {
             "mean": round(float(actual.mean()), 2),
@@ -100,6 +108,9 @@ def main() -> None:
             "uniform_lean": [round(float(v[rows].mean()), 3) for v in leans],
             "uniform_change": [round(float(v[rows].mean()), 2) for v in changes],
         }
+    if args.save:
+        maps["lod_still"] = draw("lod", gusts.replace(enabled=False))
+        np.savez_compressed(args.save, **maps)
     print(json.dumps(out))
 
 
