@@ -6,6 +6,7 @@ predicted by interpolating the uniform winds' changes at that pixel in the gusts
 
     .venv/bin/python scripts/wind_locality.py [--direction 0] [--rows 140:200]
         [--scene bench] [--camera zones] [--save maps.npz]
+    .venv/bin/python scripts/wind_locality.py --blocks maps.npz
 
 Prints one JSON line: per representation the change's mean and spread, the prediction's, their
 correlation over the rows, and the uniform winds' mean lean and change there. A correlation
@@ -41,6 +42,18 @@ def interpolate(x: np.ndarray, xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
     return out
 
 
+def blocks(maps) -> dict:
+    """Means of the change under the third uniform lean over 30 × 120-pixel blocks, rows 90 on."""
+    out: dict = {"lean": round(float(maps["uniform_leans"][2][90:].mean()), 3)}
+    for mode in ("geometry", "volume"):
+        change = maps[f"{mode}_uniform"][2]
+        out[mode] = [
+            [round(float(change[r : r + 30, c : c + 120].mean()), 1) for c in range(0, 480, 120)]
+            for r in range(90, 270, 30)
+        ]
+    return out
+
+
 def main() -> None:
     from scipy.ndimage import gaussian_filter
 
@@ -58,7 +71,15 @@ def main() -> None:
         "--save", type=Path,
         help="an .npz of the per-pixel maps: leans, the uniform winds' and the gusts' changes",
     )  # fmt: skip
+    ap.add_argument(
+        "--blocks", type=Path,
+        help="instead of drawing: a saved .npz's change at the third uniform lean, blades and "
+        "volume, as means over blocks of 30 rows × 120 columns from row 90",
+    )  # fmt: skip
     args = ap.parse_args()
+    if args.blocks:
+        print(json.dumps(blocks(np.load(args.blocks))))
+        return
     try:
         first, end = (int(v) for v in args.rows.split(":"))
     except ValueError:
