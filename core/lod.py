@@ -202,6 +202,34 @@ class LodConfig:
         )
         return dataclasses.replace(self, levels=levels, view_height=None)
 
+    def with_blade_reach(self, reach: float) -> LodConfig:
+        """The blades drawn `reach` times as far out: each geometry level's end, and the
+        begin of the level after it, scaled (the wind's `blade_reach`: the slices hold the
+        grass at rest, and the bent blades' light is the far representations' largest miss
+        near the hand-over, README "Wind"). Held inside the levels after it: the next level
+        keeps a part of its own and no three levels overlap."""
+        if reach == 1.0:
+            return self
+        levels = list(self.levels)
+        for i, level in enumerate(levels[:-1]):
+            if level.representation != "geometry" or levels[i + 1].representation == "geometry":
+                continue
+            assert level.end is not None  # only the last level runs to the horizon
+            nxt = levels[i + 1]
+            end = level.end * reach
+            if nxt.end is not None:
+                end = min(end, 0.5 * (level.end + nxt.end))
+            begin = nxt.begin * reach
+            if i + 2 < len(levels):
+                after = levels[i + 2].begin
+                end = min(end, after)
+                begin = min(begin, 0.5 * (nxt.begin + after))  # begins before the level after
+            end = max(end, level.end)
+            begin = max(min(begin, end), nxt.begin)
+            levels[i] = dataclasses.replace(level, end=end)
+            levels[i + 1] = dataclasses.replace(nxt, begin=begin)
+        return dataclasses.replace(self, levels=tuple(levels))
+
 
 def classify(d: np.ndarray, config: LodConfig) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per level: which distances it draws (mask) and their (w, side) per eq. 5.23-5.26."""

@@ -41,6 +41,7 @@ RANGES = {
     "gust_scale": (0.5, 200.0),
     "turbulence_strength": (0.0, 0.5),
     "turbulence_scale": (0.1, 50.0),
+    "blade_reach": (1.0, 2.0),
 }
 
 
@@ -49,7 +50,10 @@ class Wind:
     """The wind over the terrain. direction: degrees, the way the wind blows, 0 = +x, 90 = +z;
     speed: world units a second the gusts travel; gust_strength / turbulence_strength: the tip
     displacement they give, as a fraction of a blade's length; gust_scale / turbulence_scale:
-    the size of a gust and of a turbulence eddy in world units."""
+    the size of a gust and of a turbulence eddy in world units; blade_reach: while the wind
+    blows, the blades (geometry) are drawn this many times as far out as the LOD levels say
+    (core/lod.py LodConfig.with_blade_reach), since the slices hold the grass at rest and miss
+    the bent blades' light most near the hand-over."""
 
     enabled: bool = False
     direction: float = 30.0
@@ -58,6 +62,7 @@ class Wind:
     gust_scale: float = 8.0
     turbulence_strength: float = 0.08
     turbulence_scale: float = 1.5
+    blade_reach: float = 1.2
 
     def __post_init__(self) -> None:
         if not isinstance(self.enabled, bool):
@@ -81,6 +86,11 @@ class Wind:
         if unknown:
             raise ValueError(f"wind: unknown field {sorted(unknown)[0]!r}")
         return cls(**data)
+
+    @property
+    def reach(self) -> float:
+        """The blades' reach the frames draw with: blade_reach while the wind blows, else 1."""
+        return self.blade_reach if self.enabled else 1.0
 
     @property
     def heading(self) -> np.ndarray:

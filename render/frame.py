@@ -351,7 +351,7 @@ class FramePipeline:
         cells = [
             draw_list(
                 mode,
-                grass.lod.for_view(h, camera.fov_y),
+                grass.lod.for_view(h, camera.fov_y).with_blade_reach(self.wind.reach),
                 camera.eye,
                 self.terrain,
                 self._instances,

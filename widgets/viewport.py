@@ -220,6 +220,7 @@ class GrassViewport(QWidget):
         self._pending = False
         if self.show_zones:
             lod = self.document.lod(0).for_view(self._size()[1], self.camera.fov_y)
+            lod = lod.with_blade_reach(self.document.wind.reach)
             rings = zone_rings(self.document.terrain, self.camera.eye, lod.levels)
             lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
             self.renderer.set_view_state("overlay", "zones", lines)

@@ -179,3 +179,51 @@ def test_a_taller_view_selects_geometry_farther_out_as_the_scaled_levels_do():
     for got, want in zip(large, expected, strict=True):
         assert np.array_equal(got["origin"], want["origin"])
         assert np.allclose(got["lod"], want["lod"])
+
+
+def test_the_winds_blade_reach_moves_the_geometry_hand_over_out():
+    config = LodConfig(
+        (LodLevel("geometry", 0.0, 4.0), LodLevel("volume", 3.0, 9.0), LodLevel("image", 8.0)),
+    )
+    assert config.with_blade_reach(1.0) is config
+    reached = config.with_blade_reach(1.25)
+    assert [(lv.begin, lv.end) for lv in reached.levels] == [(0, 5), (3.75, 9), (8, None)]
+    cells = grid_instances(40, 40)
+    eye = (0.0, 2.0, 0.0)
+    assert len(select(cells, eye, reached)[0]) > len(select(cells, eye, config)[0])
+    # held inside the levels after it: the volume keeps half its own zone, and the image
+    # level (beginning at 8) never overlaps the blades
+    far = config.with_blade_reach(2.0)
+    assert far.levels[0].end == pytest.approx(6.5) and far.levels[1].end == 9.0
+    tight = LodConfig(
+        (LodLevel("geometry", 0.0, 4.0), LodLevel("volume", 3.0, 9.0), LodLevel("image", 4.5)),
+    )
+    assert tight.with_blade_reach(2.0).levels[0].end == pytest.approx(4.5)
+
+
+@given(
+    ends=st.lists(st.floats(0.5, 50.0), min_size=1, max_size=3, unique=True),
+    overlap=st.floats(0.0, 0.99),
+    reach=st.floats(1.0, 2.0),
+    order=st.sampled_from([("geometry", "volume", "image"), ("volume", "geometry", "image")]),
+)
+def test_any_valid_levels_stay_valid_with_any_blade_reach(ends, overlap, reach, order):
+    ends = sorted(ends)
+    levels, begin = [], 0.0
+    for i, end in enumerate([*ends, None]):
+        levels.append(LodLevel(order[i % 3], begin, end))
+        if end is not None:  # the next level begins inside this one and after the one before
+            previous_end = levels[i - 1].end if i > 0 else 0.0
+            begin = max(begin, previous_end) + (1.0 - overlap) * (end - max(begin, previous_end))
+            begin = min(max(begin, previous_end), end)
+            if begin <= levels[i].begin:
+                return
+    try:
+        config = LodConfig(tuple(levels))
+    except ValueError:
+        return
+    reached = config.with_blade_reach(reach)  # raises if the levels it builds are invalid
+    for before, after in zip(config.levels, reached.levels, strict=True):
+        assert after.begin >= before.begin
+        if before.representation == "geometry" and before.end is not None:
+            assert after.end >= before.end

@@ -164,6 +164,7 @@ def test_any_valid_wind_round_trips(direction, speed, gust, turbulence):
         ({"gust_scale": float("nan")}, "gust_scale"),
         ({"enabled": 1}, "enabled"),
         ({"turbulence_scale": "big"}, "turbulence_scale"),
+        ({"blade_reach": 0.5}, "blade_reach"),
     ],
 )
 def test_impossible_winds_are_refused(changes, message):

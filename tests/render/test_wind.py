@@ -100,3 +100,25 @@ def test_every_representation_leans_with_the_one_field_at_the_same_moment(headle
         assert len(now) > 100, name
         assert np.median(now) < 0.025, f"{name}: {np.median(now):.3f}"
         assert np.median(now) < 0.4 * np.median(later), f"{name} is out of step"
+
+
+def test_while_the_wind_blows_the_blades_reach_farther(headless):
+    """The wind's blade_reach moves the hand-over from the blades to the slices out while it
+    blows (the slices hold the grass at rest), and only then."""
+    doc = get_scene("meadow").document()
+    renderer = headless(doc)
+    camera = doc.camera("default")
+
+    def blades(wind: Wind) -> int:
+        doc.wind = wind
+        renderer.pipeline.view = "shaded"
+        shaded = renderer.render(camera, SIZE, measure=False)[0]
+        renderer.pipeline.view = "techniques"
+        techniques = renderer.render(camera, SIZE, measure=False)[0]
+        regions = technique_regions(shaded, techniques, technique_colors())
+        return int(regions["geometry"].sum())
+
+    still = blades(Wind(enabled=False, blade_reach=1.5))
+    assert still > 1000
+    assert blades(Wind(enabled=True, blade_reach=1.0)) == pytest.approx(still, rel=0.05)
+    assert blades(Wind(enabled=True, blade_reach=1.5)) > 1.2 * still
