@@ -102,6 +102,26 @@ def _wind_option(p: argparse.ArgumentParser) -> None:
         choices=("on", "off"),
         help="switch the project's wind on or off (default: as the project has it)",
     )
+    p.add_argument(
+        "--blade-reach",
+        type=_blade_reach,
+        metavar="R",
+        help="while the wind blows, draw the blades R times as far out as the LOD levels say "
+        "(1 … 2; default: as the project has it, 1.2 unless set)",
+    )
+
+
+def _blade_reach(text: str) -> float:
+    from core.wind import RANGES
+
+    low, high = RANGES["blade_reach"]
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not low <= value <= high:
+        raise argparse.ArgumentTypeError(f"must be a number from {low:g} to {high:g}, not {text!r}")
+    return value
 
 
 def _lod_view_option(p: argparse.ArgumentParser) -> None:
@@ -262,11 +282,14 @@ def _document(args: argparse.Namespace):
 
 
 def _overrides(document, args: argparse.Namespace) -> None:
-    """--lod-view-height and --wind, where the command has them."""
+    """--lod-view-height, --wind and --blade-reach, where the command has them."""
     _set_view_height(document, getattr(args, "lod_view_height", None))
     wind = getattr(args, "wind", None)
     if wind is not None:
         document.wind = document.wind.replace(enabled=wind == "on")
+    reach = getattr(args, "blade_reach", None)
+    if reach is not None:
+        document.wind = document.wind.replace(blade_reach=reach)
 
 
 def _set_view_height(document, value: float | str | None) -> None:

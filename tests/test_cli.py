@@ -70,6 +70,7 @@ def test_render_writes_png_and_stats(tmp_path):
         (["--time", "0:1:0.5", "--out", "f%q.png"], ["--out", "pattern"]),
         (["--time", "0:2000:0.5", "--size", "1024x768"], ["--out", "too many", "%d"]),
         (["--wind", "gale"], ["--wind", "gale"]),
+        (["--blade-reach", "3"], ["--blade-reach", "1 to 2", "'3'"]),
     ],
 )
 def test_bad_input_is_one_clear_line(tmp_path, args, words):
@@ -184,6 +185,16 @@ def test_new_writes_a_project_that_render_reads(tmp_path):
     assert r.returncode == 2
     assert "bad.sward" in r.stderr and "not a zip file" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_new_saves_the_winds_blade_reach(tmp_path):
+    from core.project_file import load_project
+
+    path = tmp_path / "gusty.sward"
+    r = sward("new", str(path), "--scene", "patch-grid", "--wind", "on", "--blade-reach", "1.5")
+    assert r.returncode == 0, r.stderr
+    wind = load_project(path).wind
+    assert wind.enabled and wind.blade_reach == 1.5
 
 
 def test_negative_coordinates_work_as_written(tmp_path):
