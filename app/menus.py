@@ -100,6 +100,14 @@ def build_menus(w) -> None:
     w.wind_action.setChecked(w.document.wind.enabled)
     w.wind_panel.enabled_box.toggled.connect(w.wind_action.setChecked)
     view.addAction(w.wind_action)
+    w.sharp_wind_action = _action(
+        w, "S&harp wind frames", "Ctrl+Shift+H", w.viewport.set_sharp_wind, checkable=True
+    )
+    w.sharp_wind_action.setToolTip(
+        "while the wind blows, draw each moment at full quality without drafts: fewer moments "
+        "a second where full frames are slow"
+    )
+    view.addAction(w.sharp_wind_action)
     view.addSeparator()
     docks = (
         w.patch_dock,

@@ -272,11 +272,18 @@ class RenderClient:
         self._send(message)
 
     def request(
-        self, version: int, camera, size: tuple[int, int], kind: str = "view", time: float = 0.0
+        self,
+        version: int,
+        camera,
+        size: tuple[int, int],
+        kind: str = "view",
+        time: float = 0.0,
+        draft: bool = True,
     ) -> None:
-        """Ask for a frame of the current state: a draft and a full frame (`view`), or only a
-        full one (`image`: a screenshot of any size; `quality`: the LOD frame against an
-        all-geometry reference, a heat map and figures); `time`: the moment of the wind."""
+        """Ask for a frame of the current state: a draft and a full frame (`view`; without
+        `draft` the full one alone), or only a full one (`image`: a screenshot of any size;
+        `quality`: the LOD frame against an all-geometry reference, a heat map and figures);
+        `time`: the moment of the wind."""
         if self._closed:
             return
         self._flush_maps()
@@ -290,7 +297,7 @@ class RenderClient:
         }
         if kind == "view":
             self._last_request = request
-        for role in ROLES if kind == "view" else (FULL,):
+        for role in ROLES if kind == "view" and draft else (FULL,):
             self._request_from(role, request)
 
     def _request_from(self, role: str, request: dict) -> None:

@@ -10,8 +10,11 @@ While the document's wind blows, the view animates: each state asked for carries
 the wind (seconds of wind since it started blowing here), and the next moment is asked for as
 soon as the full-quality frame of the last one is on screen, or after ANIMATION_STEP_MS when
 that frame is slower (a CPU renderer then shows drafts while the wind blows, as while the
-camera moves). Switching the wind off holds the grass still, and so does the Quality view while
-it is on (its all-geometry reference takes seconds: the next moment would give it up).
+camera moves). With `sharp_wind` (View → Sharp wind frames) a new moment waits for the full
+frame of the last one and is drawn without a draft: fewer moments a second on a slow renderer,
+each at full quality. Switching the wind off holds the grass still, and so does the Quality
+view while it is on (its all-geometry reference takes seconds: the next moment would give it
+up).
 
 The Quality view: once a full-quality frame of the newest state is on screen, the full-quality
 process draws an all-geometry reference of the same camera in the background and answers with
@@ -46,6 +49,7 @@ ZONE_COLORS = {
 BRUSH_COLOR = (1.0, 1.0, 1.0, 0.9)
 IMAGE_TIMEOUT_S = 600.0
 ANIMATION_STEP_MS = 250  # the longest wait for a full frame before the wind moves on
+SHARP_STEP_MS = 10_000  # with sharp wind frames: moves on only if a full frame never comes
 
 
 class GrassViewport(QWidget):
@@ -98,6 +102,8 @@ class GrassViewport(QWidget):
         self.wind_time = 0.0
         self._wind_clock: float | None = None  # monotonic() at wind_time 0; None: still
         self._wind_step = QTimer(self, singleShot=True, interval=ANIMATION_STEP_MS)
+        self.sharp_wind = False  # each moment of the wind at full quality, no drafts
+        self._draft = False  # whether the frame asked for next needs a draft first
         self._wind_step.timeout.connect(self._next_moment)
         self.renderer = RenderClient(self._on_frame, self.status_changed.emit, self._on_restart)
         self._notifiers: list[QSocketNotifier] = []
@@ -161,7 +167,11 @@ class GrassViewport(QWidget):
 
     def _next_moment(self) -> None:
         if self.animating:
-            self.request_frame()
+            self.request_frame(draft=not self.sharp_wind)
+
+    def set_sharp_wind(self, on: bool) -> None:
+        """While the wind blows: each moment at full quality (on) or drafts between (off)."""
+        self.sharp_wind = on
 
     def set_camera(self, camera: Camera) -> None:
         self.camera = camera
@@ -205,9 +215,11 @@ class GrassViewport(QWidget):
         return self.renderer.max_image_size
 
     # -- frames --------------------------------------------------------------------------------
-    def request_frame(self) -> None:
-        """Something changed: ask for a frame of the new state (once per event-loop turn)."""
+    def request_frame(self, draft: bool = True) -> None:
+        """Something changed: ask for a frame of the new state (once per event-loop turn); a
+        draft comes first unless only the wind moved on and sharp wind frames are on."""
         self.version += 1
+        self._draft = self._draft or draft
         if not self._pending:
             self._pending = True
             QTimer.singleShot(0, self._send_request)
@@ -226,8 +238,12 @@ class GrassViewport(QWidget):
             self.renderer.set_view_state("overlay", "zones", lines)
         if self._wind_clock is not None:
             self.wind_time = monotonic() - self._wind_clock
-            self._wind_step.start()  # the next moment, unless the full frame comes first
-        self.renderer.request(self.version, self.camera, self._size(), time=self.wind_time)
+            # the next moment, unless the full frame comes first
+            self._wind_step.start(SHARP_STEP_MS if self.sharp_wind else ANIMATION_STEP_MS)
+        draft, self._draft = self._draft, False
+        self.renderer.request(
+            self.version, self.camera, self._size(), time=self.wind_time, draft=draft
+        )
 
     def _on_frame(self, frame: Frame) -> None:
         if frame.kind == "image":

@@ -445,3 +445,28 @@ def test_the_wind_dock_animates_the_grass_undoably_and_is_saved(window, qtbot, t
     QApplication.processEvents()
     calm = grab(window)
     assert np.abs(calm.astype(int) - still.astype(int)).mean() < 1.0  # as before the wind
+
+
+def test_sharp_wind_frames_draw_each_moment_at_full_quality(window, qtbot):
+    """View → Sharp wind frames (Ctrl+Shift+H): while the wind blows, each new moment waits for
+    the full frame of the last and comes without a draft, so a slow renderer shows sharp
+    frames instead of a stream of drafts."""
+    vp = window.viewport
+    qtbot.waitUntil(lambda: not vp.settling, timeout=60_000)
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    vp.setFocus()
+    shift_ctrl = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+    qtbot.keyClick(vp, Qt.Key.Key_H, shift_ctrl)
+    assert window.sharp_wind_action.isChecked() and vp.sharp_wind
+    shown: list[tuple[bool, float]] = []
+    vp.frame_rendered.connect(lambda stats: shown.append((stats.preview, vp.wind_time)))
+    window.set_wind_blowing(True)
+    # the switch itself is a change of the document: a draft may come first; after that the
+    # moments are full frames only
+    qtbot.waitUntil(lambda: len({t for p, t in shown if not p}) >= 3, timeout=120_000)
+    first_full = next(i for i, (p, _) in enumerate(shown) if not p)
+    assert not any(p for p, _ in shown[first_full:])
+    moments = [t for _, t in shown[first_full:]]
+    assert moments == sorted(moments) and moments[-1] > moments[0]
+    window.set_wind_blowing(False)
