@@ -106,8 +106,9 @@ def _wind_option(p: argparse.ArgumentParser) -> None:
         "--blade-reach",
         type=_blade_reach,
         metavar="R",
-        help="while the wind blows, draw the blades R times as far out as the LOD levels say "
-        "(1 … 2; default: as the project has it, 1.2 unless set)",
+        help="while the wind blows, the representation after the blades begins R times as far "
+        "out as the LOD levels say, the blades run on past it (1 … 2; default: as the project "
+        "has it, 1.4 unless set)",
     )
 
 

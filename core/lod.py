@@ -102,6 +102,11 @@ class LodLevel:
         return (self.representation, self.slices if self.representation == "volume" else 0)
 
 
+# with the wind's blade_reach: the blades run on at least this share of the distance past the
+# next representation's begin (core/wind.py)
+HAND_OVER_BAND = 0.05
+
+
 @dataclass(frozen=True)
 class LodConfig:
     """Levels ordered by distance. Level i+1 begins before level i ends (or where it ends);
@@ -203,11 +208,12 @@ class LodConfig:
         return dataclasses.replace(self, levels=levels, view_height=None)
 
     def with_blade_reach(self, reach: float) -> LodConfig:
-        """The blades drawn `reach` times as far out: each geometry level's end, and the
-        begin of the level after it, scaled (the wind's `blade_reach`: the slices hold the
-        grass at rest, and the bent blades' light is the far representations' largest miss
-        near the hand-over, README "Wind"). Held inside the levels after it: the next level
-        keeps a part of its own and no three levels overlap."""
+        """The hand-over from the blades moved out (the wind's `blade_reach`): the level after
+        each geometry level begins `reach` times as far out, and the geometry level runs on to
+        at least HAND_OVER_BAND past that begin, so that the two still blend. The slices hold
+        the grass at rest, and the bent blades' light is the volume's largest miss where it
+        begins, nearest the eye (README "Wind"). Held inside the levels after it: the next
+        level keeps part of its own zone and no three levels overlap."""
         if reach == 1.0:
             return self
         levels = list(self.levels)
@@ -216,10 +222,10 @@ class LodConfig:
                 continue
             assert level.end is not None  # only the last level runs to the horizon
             nxt = levels[i + 1]
-            end = level.end * reach
+            begin = nxt.begin * reach
+            end = max(level.end, begin * (1.0 + HAND_OVER_BAND))
             if nxt.end is not None:
                 end = min(end, 0.5 * (level.end + nxt.end))
-            begin = nxt.begin * reach
             if i + 2 < len(levels):
                 after = levels[i + 2].begin
                 end = min(end, after)

@@ -127,7 +127,7 @@ class Wind(msgspec.Struct, forbid_unknown_fields=True):
     gust_scale: Annotated[float, Meta(ge=0.5, le=200.0)] = 8.0
     turbulence_strength: Annotated[float, Meta(ge=0.0, le=0.5)] = 0.08
     turbulence_scale: Annotated[float, Meta(ge=0.1, le=50.0)] = 1.5
-    blade_reach: Annotated[float, Meta(ge=1.0, le=2.0)] = 1.2
+    blade_reach: Annotated[float, Meta(ge=1.0, le=2.0)] = 1.4
 
 
 class Slices(msgspec.Struct, forbid_unknown_fields=True):

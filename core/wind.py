@@ -51,9 +51,10 @@ class Wind:
     speed: world units a second the gusts travel; gust_strength / turbulence_strength: the tip
     displacement they give, as a fraction of a blade's length; gust_scale / turbulence_scale:
     the size of a gust and of a turbulence eddy in world units; blade_reach: while the wind
-    blows, the blades (geometry) are drawn this many times as far out as the LOD levels say
-    (core/lod.py LodConfig.with_blade_reach), since the slices hold the grass at rest and miss
-    the bent blades' light most near the hand-over."""
+    blows, the representation after the blades begins this many times as far out as the LOD
+    levels say, and the blades run on a little past it (core/lod.py
+    LodConfig.with_blade_reach): the slices hold the grass at rest and miss the bent blades'
+    light most where they begin, nearest the eye."""
 
     enabled: bool = False
     direction: float = 30.0
@@ -62,7 +63,7 @@ class Wind:
     gust_scale: float = 8.0
     turbulence_strength: float = 0.08
     turbulence_scale: float = 1.5
-    blade_reach: float = 1.2
+    blade_reach: float = 1.4
 
     def __post_init__(self) -> None:
         if not isinstance(self.enabled, bool):
@@ -89,7 +90,7 @@ class Wind:
 
     @property
     def reach(self) -> float:
-        """The blades' reach the frames draw with: blade_reach while the wind blows, else 1."""
+        """The blade reach the frames draw with: blade_reach while the wind blows, else 1."""
         return self.blade_reach if self.enabled else 1.0
 
     @property

@@ -19,7 +19,7 @@ NUMBERS = (
     ("gust_scale", "Gust size", 0.5, " units"),
     ("turbulence_strength", "Turbulence strength", 0.01, " × length"),
     ("turbulence_scale", "Turbulence size", 0.1, " units"),
-    ("blade_reach", "Blades reach while blowing", 0.05, " × the LOD zone"),
+    ("blade_reach", "Blades reach while blowing", 0.05, " × the volume's begin"),
 )
 
 

@@ -6,7 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from core.grid import grid_instances
-from core.lod import LodConfig, LodLevel, classify, opacity, select, weight_near
+from core.lod import HAND_OVER_BAND, LodConfig, LodLevel, classify, opacity, select, weight_near
 
 
 @given(
@@ -181,20 +181,25 @@ def test_a_taller_view_selects_geometry_farther_out_as_the_scaled_levels_do():
         assert np.allclose(got["lod"], want["lod"])
 
 
-def test_the_winds_blade_reach_moves_the_geometry_hand_over_out():
+def test_the_winds_blade_reach_moves_the_hand_over_from_the_blades_out():
     config = LodConfig(
         (LodLevel("geometry", 0.0, 4.0), LodLevel("volume", 3.0, 9.0), LodLevel("image", 8.0)),
     )
     assert config.with_blade_reach(1.0) is config
-    reached = config.with_blade_reach(1.25)
-    assert [(lv.begin, lv.end) for lv in reached.levels] == [(0, 5), (3.75, 9), (8, None)]
+    # the volume begins farther out; the blades keep their end while it lies beyond that
+    near = config.with_blade_reach(1.25)
+    assert [(lv.begin, lv.end) for lv in near.levels] == [(0, 4), (3.75, 9), (8, None)]
+    # beyond it, the blades run on past the volume's begin to blend with it
+    reached = config.with_blade_reach(1.5)
+    assert reached.levels[1].begin == pytest.approx(4.5)
+    assert reached.levels[0].end == pytest.approx(4.5 * (1.0 + HAND_OVER_BAND))
     cells = grid_instances(40, 40)
     eye = (0.0, 2.0, 0.0)
     assert len(select(cells, eye, reached)[0]) > len(select(cells, eye, config)[0])
-    # held inside the levels after it: the volume keeps half its own zone, and the image
-    # level (beginning at 8) never overlaps the blades
+    # held inside the levels after it: the volume begins before the image level does, and
+    # the image level (beginning at 8) never overlaps the blades
     far = config.with_blade_reach(2.0)
-    assert far.levels[0].end == pytest.approx(6.5) and far.levels[1].end == 9.0
+    assert [far.levels[0].end, far.levels[1].begin] == pytest.approx([6.3, 5.5])
     tight = LodConfig(
         (LodLevel("geometry", 0.0, 4.0), LodLevel("volume", 3.0, 9.0), LodLevel("image", 4.5)),
     )
