@@ -64,8 +64,9 @@ def main() -> None:
     if args.wind:
         try:
             direction, strength = (float(v) for v in args.wind.split(","))
+            # blade_reach 1: the zones as in still air
             wind = Wind(enabled=True, direction=direction, gust_strength=strength,
-                        gust_scale=200.0, turbulence_strength=0.0)  # fmt: skip
+                        gust_scale=200.0, turbulence_strength=0.0, blade_reach=1.0)  # fmt: skip
         except ValueError as exc:
             ap.error(f"--wind {args.wind}: give DIRECTION,STRENGTH ({exc})")
     project = load_project(args.project)

@@ -6,7 +6,7 @@ bent blades would do to the wind-on agreement.
 
     .venv/bin/python scripts/uniform_wind_quality.py [--direction 90] [--strength 0.6]
         [--wind on] [--scene bench] [--camera zones] [--size 480x270] [--brightness]
-        [--gusts [--turbulence S] [--gust-scale M]] [--no-tiling]
+        [--gusts [--turbulence S] [--gust-scale M]] [--no-tiling] [--blade-reach R]
 
 Prints one JSON line: × the floor over the frame and per technique's region. With
 `--brightness`, instead: how much each representation drawn alone (`--only`) darkens under the
@@ -53,6 +53,10 @@ def main() -> None:
         "--gust-scale", type=float,
         help="with --gusts: the gusts' size in world units instead of the scene's",
     )  # fmt: skip
+    ap.add_argument(
+        "--blade-reach", type=float, default=1.0,
+        help="the wind's blade_reach (default 1: the LOD zones as in still air)",
+    )  # fmt: skip
     args = ap.parse_args()
     try:
         size = tuple(int(v) for v in args.size.split("x"))
@@ -74,6 +78,10 @@ def main() -> None:
             wind = wind.replace(turbulence_strength=args.turbulence)
         if args.gust_scale is not None:
             wind = wind.replace(gust_scale=args.gust_scale)
+    try:
+        wind = wind.replace(blade_reach=args.blade_reach)
+    except ValueError as exc:
+        ap.error(str(exc))
     if args.brightness:
         print(json.dumps(brightness(doc, args.camera, size, wind)))
         return

@@ -98,10 +98,12 @@ def main() -> None:
         lean = (draw("geometry", wind, "wind")[..., :2] / 255.0 - 0.5) * 1.8  # _wind.glsl
         return gaussian_filter(np.hypot(lean[..., 0], lean[..., 1]), SIGMA)
 
-    gusts = doc.wind.replace(enabled=True, direction=args.direction, turbulence_strength=0.0)
+    # blade_reach 1: the zones as in still air (this measures the representations' response)
+    gusts = doc.wind.replace(enabled=True, direction=args.direction, turbulence_strength=0.0,
+                             blade_reach=1.0)  # fmt: skip
     uniform = [
         Wind(enabled=True, direction=args.direction, gust_strength=s, gust_scale=200.0,
-             turbulence_strength=0.0)
+             turbulence_strength=0.0, blade_reach=1.0)
         for s in STRENGTHS
     ]  # fmt: skip
     leans = np.stack([lean_size(w) for w in uniform])

@@ -65,7 +65,7 @@ def main() -> None:
         doc.light = source.light
         doc.wind = source.wind
     wind = doc.wind.replace(enabled=True, gust_strength=args.strength, gust_scale=200.0,
-                            turbulence_strength=0.0)  # fmt: skip
+                            turbulence_strength=0.0, blade_reach=1.0)  # fmt: skip
     if args.direction is not None:
         wind = wind.replace(direction=args.direction)
     ctx = standalone()

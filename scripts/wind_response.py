@@ -52,7 +52,7 @@ def main() -> None:
         scene = dataclasses.replace(scene, mirror_seed=None)
     doc = scene.document()
     camera = doc.camera(args.camera)
-    wind = doc.wind.replace(enabled=True)
+    wind = doc.wind.replace(enabled=True, blade_reach=1.0)  # the zones as in still air
     if args.direction is not None:
         wind = wind.replace(direction=args.direction)
     if args.turbulence is not None:
