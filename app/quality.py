@@ -52,6 +52,7 @@ class QualityRun:
         self.ctx = standalone()
         self.lod = HeadlessRenderer(document, self.ctx)
         self.geometry = HeadlessRenderer(document, self.ctx, mode="geometry")
+        self.document = document
         self.blade_width = float(document.params(0).width_max)
         self._throughput: float | None = None  # triangles per second measured in LOD frames
 
@@ -116,6 +117,8 @@ class QualityRun:
             row["techniques"][technique].update(
                 floor=base, over_floor=None if here is None or not base else here / base
             )
+        if self.document.wind.enabled:
+            self._still_floor(row, camera, regions)
         if out is not None:
             from PIL import Image
 
@@ -126,6 +129,30 @@ class QualityRun:
             Image.fromarray(heat).save(f"{stem}-flip.png")
             row["heat_map"] = f"{stem}-flip.png"
         return row
+
+    def _still_floor(self, row: dict, camera: Camera, regions: dict) -> None:
+        """With the wind on, the floor of still air as well (two more all-geometry frames):
+        bent blades show less detail, so the wind's own floor is lower, and "as in still air"
+        compares the LOD frame's difference with the yardstick still air had."""
+        document = self.document
+        wind = document.wind
+        document.wind = wind.replace(enabled=False)
+        try:
+            reference, _ = self.geometry.render(camera, self.size, measure=False)
+            shifted_image, _ = self.geometry.render(
+                shifted(camera, self.blade_width), self.size, measure=False
+            )
+        finally:
+            document.wind = wind
+        still = Comparison.of(reference, shifted_image)
+        row["still_floor"] = still.to_dict()
+        row["over_still_floor"] = row["lod"]["flip_quarter"] / max(still.flip_quarter, 1e-9)
+        for technique, region in regions.items():
+            here, base = row["techniques"][technique]["flip_quarter"], still.region(region)
+            row["techniques"][technique].update(
+                still_floor=base,
+                over_still_floor=None if here is None or not base else here / base,
+            )
 
     def path_figures(
         self, name: str, cameras: list[Camera], start: float = 0.0, step: float = 0.0
@@ -227,11 +254,20 @@ def report(result: dict) -> str:
             f"LOD {row['lod_ms']:.0f} ms vs geometry {row['geometry_ms']:.0f} ms "
             f"({row['speedup']:.1f}x)"
         )
+        if "still_floor" in row:
+            lines.append(
+                f"    still air's floor {_f(row['still_floor']['flip_quarter'])}: "
+                f"{row['over_still_floor']:.2f}x"
+            )
         for technique, t in row["techniques"].items():
             if t["pixels"]:
+                still = ""
+                if "still_floor" in t:
+                    still = f" ({_f(t['over_still_floor'], 2)}x still air's)"
                 lines.append(
                     f"    {technique:9s} {t['pixels']:7d} px  FLIP {_f(t['flip_quarter'])} "
                     f"quarter, floor {_f(t['floor'])}, {_f(t['over_floor'], 2)}x the floor"
+                    f"{still}"
                 )
     p = result.get("path")
     if p is not None:

@@ -406,6 +406,32 @@ def test_quality_along_a_path_while_the_wind_blows(tmp_path):
     assert changes["on"] > changes["off"]
 
 
+def test_quality_with_the_wind_on_also_measures_against_still_airs_floor(tmp_path):
+    """Bent blades show less detail: the wind's floor is lower than still air's. With the wind
+    on, quality reports the LOD frame against still air's floor too, which is the floor a run
+    with the wind off measures."""
+    rows = {}
+    for wind in ("on", "off"):
+        out = tmp_path / wind
+        r = sward(
+            "quality", "--scene", "patch-grid", "--camera", "grazing", "--size", "160x96",
+            "--wind", wind, "--time", "1", "--out", str(out),
+        )  # fmt: skip
+        assert r.returncode == 0, r.stderr
+        (rows[wind],) = json.loads((out / "quality.json").read_text())["cameras"]
+        assert ("still air's floor" in r.stdout) == (wind == "on")
+    on, off = rows["on"], rows["off"]
+    assert "still_floor" not in off
+    assert on["still_floor"]["flip_quarter"] == pytest.approx(off["floor"]["flip_quarter"])
+    assert on["floor"]["flip_quarter"] != pytest.approx(off["floor"]["flip_quarter"])
+    assert on["over_still_floor"] == pytest.approx(
+        on["lod"]["flip_quarter"] / off["floor"]["flip_quarter"]
+    )
+    for t in on["techniques"].values():
+        if t["pixels"] and t["still_floor"]:
+            assert t["over_still_floor"] == pytest.approx(t["flip_quarter"] / t["still_floor"])
+
+
 def test_profile_reports_what_the_wind_costs_per_technique(tmp_path):
     out = tmp_path / "p.json"
     args = ["profile", "--scene", "patch-grid", "--frames", "2", "--size", "96x64", "--out"]
