@@ -19,8 +19,12 @@ NUMBERS = (
     ("gust_scale", "Gust size", 0.5, " units"),
     ("turbulence_strength", "Turbulence strength", 0.01, " × length"),
     ("turbulence_scale", "Turbulence size", 0.1, " units"),
-    ("blade_reach", "Blades reach while blowing", 0.05, " × the volume's begin"),
+    ("blade_reach", "Blades reach while blowing", 0.05, " ×"),
 )
+TIPS = {
+    "blade_reach": "while the wind blows, the volume begins this many times as far out as the "
+    "LOD zones say, and the blades run on 5 % past it (1: the zones as in still air)",
+}
 
 
 class WindPanel(QWidget):
@@ -48,6 +52,7 @@ class WindPanel(QWidget):
                 "step": step,
                 "suffix": suffix,
                 "value": getattr(wind, name),
+                "tip": TIPS.get(name, ""),
             }
             for name, title, step, suffix in NUMBERS
         ]
