@@ -18,7 +18,7 @@ from PySide6.QtWidgets import (
     QUndoView,
 )
 
-from app import commands
+from app import commands, view_settings
 from app.autosave import INTERVAL_MS, Autosave, default_directory
 from app.map_files import MapFileActions
 from app.menus import build_menus, fill_camera_menu
@@ -48,7 +48,7 @@ class DesignerWindow(QMainWindow):
         self.undo_stack = QUndoStack(self)
         self.history_cap = commands.MEMORY_CAP
         self.dialogs = QtDialogs(self)
-        settings = QSettings("Sward", "Sward")
+        settings = self.settings = QSettings("Sward", "Sward")
         self.projects = ProjectActions(
             lambda: self.document,
             self.open_document,
@@ -111,6 +111,7 @@ class DesignerWindow(QMainWindow):
         self._bind_document(document)
         build_menus(self)
         self.resize(1200, 760)
+        view_settings.restore(self, settings)  # layout and View preferences of last time
 
     def _connect(self) -> None:
         """Panels -> commands -> the document; viewport and builder -> the window."""
@@ -388,6 +389,7 @@ class DesignerWindow(QMainWindow):
         if not self.projects.confirm_discard():
             event.ignore()
             return
+        view_settings.save(self, self.settings)
         self._autosave_timer.stop()
         self.autosave.close()
         self.viewport.close_renderer()

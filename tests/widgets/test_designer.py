@@ -470,3 +470,63 @@ def test_sharp_wind_frames_draw_each_moment_at_full_quality(window, qtbot):
     moments = [t for _, t in shown[first_full:]]
     assert moments == sorted(moments) and moments[-1] > moments[0]
     window.set_wind_blowing(False)
+
+
+def test_the_window_layout_and_view_preferences_are_kept_for_the_next_start(window, qtbot):
+    """Closed and opened again, the designer has the size, the docks and the View menu's
+    display preferences it was left with (QSettings); the project's own state is not among
+    them."""
+    from app.designer import DesignerWindow
+    from app.scenes import get_scene
+
+    vp = window.viewport
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    vp.setFocus()
+    shift_ctrl = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+    qtbot.keyClick(vp, Qt.Key.Key_T)  # technique colours
+    qtbot.keyClick(vp, Qt.Key.Key_P)  # timings overlay
+    qtbot.keyClick(vp, Qt.Key.Key_H, shift_ctrl)  # sharp wind frames
+    assert window.techniques_action.isChecked() and window.overlay.isVisible()
+    window.history_dock.close()  # a dock the user closed
+    window.resize(760, 520)  # inside pytest-xvfb's 800 × 600 screen
+    qtbot.waitUntil(lambda: window.width() == 760)
+    window.close()
+
+    again = keep(DesignerWindow(get_scene("patch-grid").document()))
+    try:
+        assert again.techniques_action.isChecked()
+        assert again.timings_action.isChecked()
+        assert again.sharp_wind_action.isChecked() and again.viewport.sharp_wind
+        assert not again.zones_action.isChecked()
+        assert not again.wind_action.isChecked()  # the project's wind is still off
+        again.show()
+        qtbot.waitExposed(again)
+        assert again.width() == 760  # as built: 1200 (the height is held by the docks' least)
+        assert again.overlay.isVisible()
+        assert not again.history_dock.isVisible() and again.patch_dock.isVisible()
+    finally:
+        again.close()
+
+
+def test_settings_that_are_not_what_the_designer_saved_leave_the_window_as_built(window):
+    """A settings file edited by hand (or another version's): the designer opens as built
+    instead of failing."""
+    from PySide6.QtCore import QSettings
+
+    from app.designer import DesignerWindow
+    from app.scenes import get_scene
+
+    settings = QSettings("Sward", "Sward")
+    settings.setValue("window/geometry", "hello")
+    settings.setValue("window/dock_state", b"not a dock state")
+    settings.setValue("view/technique_colours", "banana")
+    settings.setValue("view/timings_overlay", "true")
+    settings.sync()
+    again = keep(DesignerWindow(get_scene("patch-grid").document()))
+    try:
+        assert (again.width(), again.height()) == (1200, 760)
+        assert not again.techniques_action.isChecked()
+        assert again.timings_action.isChecked()  # the one value that is a check mark
+    finally:
+        again.close()
