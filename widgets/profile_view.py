@@ -70,7 +70,7 @@ class ProfilePanel(QWidget):
         self.plot = pg.PlotWidget(background="w")
         self.plot.setLabel("left", "ms")
         self.plot.setLabel("bottom", "frame")
-        self.plot.addLegend(offset=(5, 5))
+        self.plot.addLegend(offset=(-5, 5))  # top right: the frames start at the left
         self.curves = {
             name: self.plot.plot([], [], pen=pg.mkPen(colour, width=2), name=label)
             for name, label, colour in PARTS
@@ -93,6 +93,10 @@ class ProfilePanel(QWidget):
         layout.addWidget(self.plot, 1)
         layout.addLayout(row)
         self._count = 0
+        # the frame axis spans the frames the plot holds (_draw), not pyqtgraph's -0.5 … 0.5
+        # around the first frame, which shows as a bare axis labelled "× 0.001"
+        self.plot.getViewBox().enableAutoRange(x=False)
+        self.plot.setXRange(0, PLOT_FRAMES, padding=0)
 
     def add(self, stats: FrameStats) -> None:
         self.history.append(stats)
@@ -101,10 +105,22 @@ class ProfilePanel(QWidget):
             self.recording.append(stats)
             self.label.setText(f"recording: {len(self.recording)} frames")
         if self.isVisible():
-            x = np.arange(self._count - len(self.history), self._count)
-            for name, curve in self.curves.items():
-                curve.setData(x, [getattr(s, name) for s in self.history])
-            self.total.setData(x, [s.t_a_ms for s in self.history])
+            self._draw()
+
+    def showEvent(self, event) -> None:
+        # frames that came while the dock was hidden or behind another tab
+        super().showEvent(event)
+        self._draw()
+
+    def _draw(self) -> None:
+        if not self.history:
+            return
+        x = np.arange(self._count - len(self.history), self._count)
+        for name, curve in self.curves.items():
+            curve.setData(x, [getattr(s, name) for s in self.history])
+        self.total.setData(x, [s.t_a_ms for s in self.history])
+        first = max(self._count - PLOT_FRAMES, 0)
+        self.plot.setXRange(first, first + PLOT_FRAMES, padding=0)
 
     def _on_record(self, on: bool) -> None:
         self.record_button.setText("Stop and save…" if on else "Record")

@@ -356,3 +356,27 @@ def test_the_painting_shortcuts_people_know(window, qtbot):
     assert window.overlay.isVisible()
     QTest.keyClick(vp, Qt.Key.Key_Escape)
     assert vp.tool == "camera" and not window.paint_action.isChecked()
+
+
+def test_the_timings_plot_shows_frames_drawn_while_its_dock_was_closed(window, qtbot):
+    """Frames drawn while the Timings dock is closed are plotted as soon as it is opened
+    again (View menu), not from the next frame on; the frame axis spans the frames the plot
+    holds, not pyqtgraph's -0.5 … 0.5."""
+    from widgets.profile_view import PLOT_FRAMES
+
+    panel = window.profile_panel
+    window.profile_dock.toggleViewAction().trigger()  # View → Timings: closed
+    qtbot.waitUntil(lambda: not panel.isVisible())
+    seen = len(panel.history)
+    panel.total.setData([], [])  # the plot as if nothing had been drawn yet
+    window.viewport.request_frame(draft=False)  # as any edit does
+    qtbot.waitUntil(lambda: len(panel.history) > seen, timeout=60_000)
+    hidden_x, _ = panel.total.getData()
+    assert hidden_x is None or len(hidden_x) == 0  # closed: not drawn
+    window.profile_dock.toggleViewAction().trigger()  # opened again
+    qtbot.waitUntil(panel.isVisible)
+    x, y = panel.total.getData()
+    assert x is not None and len(x) == len(panel.history)
+    assert list(y) == [s.t_a_ms for s in panel.history]
+    low, high = panel.plot.getViewBox().viewRange()[0]
+    assert low <= x[0] and high >= x[-1] and high - low >= PLOT_FRAMES * 0.9
