@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence
 
+from app import view_settings
 from app.scenes import SCENES, get_scene
 from core.view_mode import ViewMode
 
@@ -120,6 +121,10 @@ def build_menus(w) -> None:
     )
     for dock in (*docks, w.profile_dock):
         view.addAction(dock.toggleViewAction())
+    view.addSeparator()
+    w.reset_layout_action = _action(w, "Reset &layout", "", lambda: view_settings.reset_layout(w))
+    w.reset_layout_action.setToolTip("the docks and the window as the designer first opens them")
+    view.addAction(w.reset_layout_action)
 
     paint = w.menuBar().addMenu("&Paint")
     w.paint_action = _action(w, "&Paint in the viewport", "B", w.set_painting, True)

@@ -24,6 +24,7 @@ def restore(window: Any, settings: Any) -> None:
     over: the window stays as built there."""
     from PySide6.QtCore import QByteArray
 
+    window.built_layout = (window.saveState(), window.size())  # for View → Reset layout
     geometry, state = settings.value(GEOMETRY), settings.value(STATE)
     if isinstance(geometry, QByteArray | bytes):
         window.restoreGeometry(geometry)
@@ -33,6 +34,14 @@ def restore(window: Any, settings: Any) -> None:
         on = _flag(settings.value(key))
         if on is not None:
             getattr(window, name).setChecked(on)
+
+
+def reset_layout(window: Any) -> None:
+    """View → Reset layout: the docks where the designer puts them, every one open again, and
+    the window at its first size (the View preferences stay as they are)."""
+    state, size = window.built_layout
+    window.restoreState(state)
+    window.resize(size)
 
 
 def _flag(value: Any) -> bool | None:

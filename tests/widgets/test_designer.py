@@ -505,6 +505,10 @@ def test_the_window_layout_and_view_preferences_are_kept_for_the_next_start(wind
         assert again.width() == 760  # as built: 1200 (the height is held by the docks' least)
         assert again.overlay.isVisible()
         assert not again.history_dock.isVisible() and again.patch_dock.isVisible()
+        again.reset_layout_action.trigger()  # View → Reset layout
+        qtbot.waitUntil(again.history_dock.isVisible)
+        assert again.width() == 1200  # as built
+        assert again.techniques_action.isChecked()  # the preferences stay
     finally:
         again.close()
 
