@@ -1,6 +1,6 @@
-"""The wind panel (issue: wind): on/off, the direction on a dial, and the gusts' and the
-turbulence's strength and size — a dial above a pyqtgraph ParameterTree that shows a Wind and
-reports edits as a new one. While the wind is on, the viewport animates (widgets/viewport.py)."""
+"""The wind panel (issue: wind): on/off, the direction on a dial, a preset (core/wind.py
+PRESETS), and the gusts' and the turbulence's strength and size — a dial above a pyqtgraph
+ParameterTree that shows a Wind and reports edits as a new one. While the wind is on, the viewport animates (widgets/viewport.py)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,17 @@ import dataclasses
 
 from pyqtgraph.parametertree import Parameter, ParameterTree
 from PySide6.QtCore import Qt, Signal
-from PySide6.QtWidgets import QCheckBox, QDial, QHBoxLayout, QLabel, QVBoxLayout, QWidget
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QComboBox,
+    QDial,
+    QHBoxLayout,
+    QLabel,
+    QVBoxLayout,
+    QWidget,
+)
 
-from core.wind import RANGES, Wind
+from core.wind import PRESETS, RANGES, Wind, preset_of
 
 # (field, title, step, suffix); the limits are core/wind.py's
 NUMBERS = (
@@ -21,6 +29,7 @@ NUMBERS = (
     ("turbulence_scale", "Turbulence size", 0.1, " units"),
     ("blade_reach", "Blades reach while blowing", 0.05, " ×"),
 )
+CUSTOM = "(custom)"  # the preset box's entry for values of no preset
 TIPS = {
     "blade_reach": "while the wind blows, the volume begins this many times as far out as the "
     "LOD zones say, and the blades run on 5 % past it (1: the zones as in still air)",
@@ -43,6 +52,11 @@ class WindPanel(QWidget):
         self.dial.setFixedSize(96, 96)
         self.dial.setToolTip("the direction the wind blows towards, seen from above")
         self.direction_label = QLabel()
+        self.preset_box = QComboBox()
+        self.preset_box.addItems([CUSTOM, *PRESETS])
+        self.preset_box.setToolTip(
+            "how the gusts and the turbulence move; the direction stays (one undo step)"
+        )
         children = [
             {
                 "name": name,
@@ -68,6 +82,10 @@ class WindPanel(QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.enabled_box)
         layout.addLayout(dial_row)
+        preset_row = QHBoxLayout()
+        preset_row.addWidget(QLabel("Preset"))
+        preset_row.addWidget(self.preset_box, 1)
+        layout.addLayout(preset_row)
         layout.addWidget(self.tree)
         layout.addWidget(self.message)
         self.wind = wind
@@ -76,6 +94,7 @@ class WindPanel(QWidget):
         self.enabled_box.toggled.connect(self._on_edited)
         self.dial.valueChanged.connect(self._on_edited)
         self.root.sigTreeStateChanged.connect(self._on_edited)
+        self.preset_box.activated.connect(self._on_preset)
 
     @staticmethod
     def dial_value(direction: float) -> int:
@@ -97,8 +116,22 @@ class WindPanel(QWidget):
             for name, *_ in NUMBERS:
                 self.root.child(name).setValue(getattr(wind, name))
             self.direction_label.setText(f"towards {wind.direction:.0f} °")
+            self.preset_box.setCurrentText(preset_of(wind) or CUSTOM)
         finally:
             self._updating = False
+
+    def _on_preset(self, index: int) -> None:
+        """A preset picked: its values in one edit (the tree follows through show_wind)."""
+        values = PRESETS.get(self.preset_box.itemText(index))
+        if values is None:  # "(custom)": nothing to set
+            self.preset_box.setCurrentText(preset_of(self.wind) or CUSTOM)
+            return
+        wind = self.wind.replace(**values)
+        if wind == self.wind:
+            return
+        self.show_wind(wind)  # the numbers show the preset's
+        self.message.clear()
+        self.wind_edited.emit(wind)
 
     def _on_edited(self, *_) -> None:
         if self._updating:
@@ -113,6 +146,7 @@ class WindPanel(QWidget):
             return
         self.message.clear()
         self.direction_label.setText(f"towards {wind.direction:.0f} °")
+        self.preset_box.setCurrentText(preset_of(wind) or CUSTOM)
         if wind != self.wind:
             self.wind = wind
             self.wind_edited.emit(wind)

@@ -18,8 +18,10 @@ from core.wind import (
     curve_tangent,
     lean,
     noise_map,
+    preset_of,
     sample_noise,
 )
+from core.wind import PRESETS as WIND_PRESETS
 
 POINTS = np.random.default_rng(3).uniform(-40.0, 40.0, (4000, 2))
 
@@ -172,3 +174,17 @@ def test_impossible_winds_are_refused(changes, message):
         Wind(**changes)
     with pytest.raises(ValueError, match="unknown field"):
         Wind.from_dict({"gale": 3})
+
+
+def test_wind_presets_rise_from_breeze_to_storm_and_are_recognised():
+    """The Wind dock's presets: the light breeze bends the blades least and the storm most, and
+    a wind with a preset's values is named by it (the default wind is "gusty")."""
+    means = []
+    for name, values in WIND_PRESETS.items():
+        wind = Wind(enabled=True, direction=45.0, **values)  # a valid wind
+        assert preset_of(wind) == name
+        means.append(np.linalg.norm(lean(wind, POINTS, 1.0), axis=-1).mean())
+    assert list(WIND_PRESETS) == ["light breeze", "gusty", "storm"]
+    assert means[0] < means[1] < means[2]
+    assert preset_of(Wind()) == "gusty"
+    assert preset_of(Wind(gust_strength=0.36)) is None

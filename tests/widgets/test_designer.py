@@ -534,3 +534,29 @@ def test_settings_that_are_not_what_the_designer_saved_leave_the_window_as_built
         assert again.timings_action.isChecked()  # the one value that is a check mark
     finally:
         again.close()
+
+
+def test_a_wind_preset_sets_the_gusts_in_one_undo_step(window, qtbot):
+    """Wind dock → Preset: picking "storm" sets the gusts' and the turbulence's values at
+    once (the direction stays), the numbers show them, one undo puts the wind back; a value
+    edited by hand shows the preset box as "(custom)"."""
+    from core.wind import PRESETS
+
+    panel = window.wind_panel
+    box = panel.preset_box
+    assert box.currentText() == "gusty"  # the default wind
+    before = window.document.wind
+    window.wind_dock.raise_()
+    qtbot.waitUntil(box.isVisible)
+    box.setFocus()
+    qtbot.keyClick(box, Qt.Key.Key_Down)  # gusty -> storm, as a user steps through the list
+    wind = window.document.wind
+    assert box.currentText() == "storm"
+    assert wind.gust_strength == PRESETS["storm"]["gust_strength"]
+    assert wind.speed == PRESETS["storm"]["speed"] and wind.direction == before.direction
+    assert panel.root.child("gust_strength").value() == PRESETS["storm"]["gust_strength"]
+    assert window.undo_stack.count() == 1
+    window.undo_stack.undo()
+    assert window.document.wind == before and box.currentText() == "gusty"
+    panel.root.child("gust_scale").setValue(9.5)  # by hand
+    assert window.document.wind.gust_scale == 9.5 and box.currentText() == "(custom)"
