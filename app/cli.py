@@ -99,8 +99,10 @@ def _time_option(p: argparse.ArgumentParser, metavar: str, more: str) -> None:
 def _wind_option(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--wind",
-        choices=("on", "off"),
-        help="switch the project's wind on or off (default: as the project has it)",
+        type=_wind,
+        metavar="on|off|PRESET",
+        help="switch the project's wind on or off, or on with a preset's gusts and turbulence "
+        "(light-breeze, gusty, storm; the direction kept); default: as the project has it",
     )
     p.add_argument(
         "--blade-reach",
@@ -110,6 +112,17 @@ def _wind_option(p: argparse.ArgumentParser) -> None:
         "out as the LOD levels say, the blades run on past it (1 … 2; default: as the project "
         "has it, 1.4 unless set)",
     )
+
+
+def _wind(text: str) -> str:
+    """on, off, or a wind preset's name (core/wind.py PRESETS; '-' for its spaces)."""
+    from core.wind import PRESETS
+
+    name = text.replace("-", " ")
+    if text in ("on", "off") or name in PRESETS:
+        return text if text in ("on", "off") else name
+    names = ", ".join(n.replace(" ", "-") for n in PRESETS)
+    raise argparse.ArgumentTypeError(f"must be on, off or a preset ({names}), not {text!r}")
 
 
 def _blade_reach(text: str) -> float:
@@ -287,7 +300,9 @@ def _overrides(document, args: argparse.Namespace) -> None:
     _set_view_height(document, getattr(args, "lod_view_height", None))
     wind = getattr(args, "wind", None)
     if wind is not None:
-        document.wind = document.wind.replace(enabled=wind == "on")
+        from core.wind import PRESETS
+
+        document.wind = document.wind.replace(enabled=wind != "off", **PRESETS.get(wind, {}))
     reach = getattr(args, "blade_reach", None)
     if reach is not None:
         document.wind = document.wind.replace(blade_reach=reach)

@@ -69,7 +69,7 @@ def test_render_writes_png_and_stats(tmp_path):
         (["--time", "0:1000:0.01"], ["frames", "at most 10000"]),
         (["--time", "0:1:0.5", "--out", "f%q.png"], ["--out", "pattern"]),
         (["--time", "0:2000:0.5", "--size", "1024x768"], ["--out", "too many", "%d"]),
-        (["--wind", "gale"], ["--wind", "gale"]),
+        (["--wind", "gale"], ["--wind", "gale", "light-breeze, gusty, storm"]),
         (["--blade-reach", "3"], ["--blade-reach", "1 to 2", "'3'"]),
     ],
 )
@@ -195,6 +195,18 @@ def test_new_saves_the_winds_blade_reach(tmp_path):
     assert r.returncode == 0, r.stderr
     wind = load_project(path).wind
     assert wind.enabled and wind.blade_reach == 1.5
+
+
+def test_a_wind_preset_on_the_command_line_blows_with_its_values(tmp_path):
+    from core.project_file import load_project
+    from core.wind import PRESETS, Wind
+
+    path = tmp_path / "storm.sward"
+    r = sward("new", str(path), "--scene", "patch-grid", "--wind", "light-breeze")
+    assert r.returncode == 0, r.stderr
+    wind = load_project(path).wind
+    assert wind.enabled and wind.gust_strength == PRESETS["light breeze"]["gust_strength"]
+    assert wind.direction == Wind().direction  # the scene's direction kept
 
 
 def test_negative_coordinates_work_as_written(tmp_path):
