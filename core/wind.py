@@ -44,32 +44,6 @@ RANGES = {
     "blade_reach": (1.0, 2.0),
 }
 
-# The Wind dock's presets: how the gusts and the turbulence move (their speed, strength and
-# size); the direction, the on/off and the blade reach stay as they are. "gusty" is the
-# default wind.
-PRESETS = {
-    "light breeze": {
-        "speed": 1.0, "gust_strength": 0.15, "gust_scale": 10.0,
-        "turbulence_strength": 0.04, "turbulence_scale": 2.0,
-    },
-    "gusty": {
-        "speed": 2.0, "gust_strength": 0.35, "gust_scale": 8.0,
-        "turbulence_strength": 0.08, "turbulence_scale": 1.5,
-    },
-    "storm": {
-        "speed": 6.0, "gust_strength": 0.7, "gust_scale": 12.0,
-        "turbulence_strength": 0.2, "turbulence_scale": 1.0,
-    },
-}  # fmt: skip
-
-
-def preset_of(wind: Wind) -> str | None:
-    """The name of the preset whose values `wind` has, or None."""
-    for name, values in PRESETS.items():
-        if all(getattr(wind, field) == value for field, value in values.items()):
-            return name
-    return None
-
 
 @dataclass(frozen=True)
 class Wind:
@@ -130,6 +104,25 @@ class Wind:
         h = self.heading
         turned = np.array([h[0] * 0.8660254 - h[1] * 0.5, h[0] * 0.5 + h[1] * 0.8660254])
         return h * self.speed * time, turned * self.speed * TURBULENCE_DRIFT * time
+
+
+# The Wind dock's presets: how the gusts and the turbulence move (their speed, strength and
+# size); the direction, the on/off and the blade reach stay as they are. "gusty" is the
+# default wind.
+MOTION = ("speed", "gust_strength", "gust_scale", "turbulence_strength", "turbulence_scale")
+PRESETS = {
+    "light breeze": dict(zip(MOTION, (1.0, 0.15, 10.0, 0.04, 2.0), strict=True)),
+    "gusty": {name: getattr(Wind(), name) for name in MOTION},
+    "storm": dict(zip(MOTION, (6.0, 0.7, 12.0, 0.2, 1.0), strict=True)),
+}
+
+
+def preset_of(wind: Wind) -> str | None:
+    """The name of the preset whose values `wind` has, or None."""
+    for name, values in PRESETS.items():
+        if all(getattr(wind, field) == value for field, value in values.items()):
+            return name
+    return None
 
 
 @lru_cache(maxsize=1)

@@ -1,6 +1,7 @@
 """The wind panel (issue: wind): on/off, the direction on a dial, a preset (core/wind.py
 PRESETS), and the gusts' and the turbulence's strength and size — a dial above a pyqtgraph
-ParameterTree that shows a Wind and reports edits as a new one. While the wind is on, the viewport animates (widgets/viewport.py)."""
+ParameterTree that shows a Wind and reports edits as a new one. While the wind is on, the
+viewport animates (widgets/viewport.py)."""
 
 from __future__ import annotations
 
