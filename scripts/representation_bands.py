@@ -8,7 +8,7 @@ whole region.
     .venv/bin/python scripts/representation_bands.py [--scene bench] [--camera zones]
         [--size 480x270] [--band 15] [--only volume,image] [--height-view | --coverage-view
         | --sun-view]
-        [--blades N] [--save PREFIX]
+        [--blades N] [--save PREFIX] [--box X0,Y0,X1,Y1 ...]
 
 With --height-view the blades are black at the root and white at the tip, lit by white ambient
 light alone without AO: a band's grey is the height along the blades that its pixels meet.
@@ -50,6 +50,14 @@ def main() -> None:
         "--blades", type=int, default=None, help="blades per patch instead of the scene's"
     )
     ap.add_argument("--save", metavar="PREFIX", help="write each frame as PREFIX-MODE.png")
+    ap.add_argument(
+        "--box",
+        action="append",
+        default=[],
+        metavar="X0,Y0,X1,Y1",
+        help="also the mean RGB of each frame over this rectangle (columns X0 … X1 - 1, rows "
+        "Y0 … Y1 - 1); may be given more than once",
+    )
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
     scene = get_scene(args.scene)
@@ -80,6 +88,19 @@ def main() -> None:
 
                 Image.fromarray(image).save(f"{args.save}-{mode}.png")
             images[mode] = image.astype(np.float64)
+    boxes = []
+    for text in args.box:
+        try:
+            x0, y0, x1, y1 = (int(v) for v in text.split(","))
+        except ValueError:
+            ap.error(f"--box {text!r}: give X0,Y0,X1,Y1")
+        boxes.append(
+            {"box": [x0, y0, x1, y1]}
+            | {
+                mode: np.round(image[y0:y1, x0:x1].reshape(-1, 3).mean(axis=0), 1).tolist()
+                for mode, image in images.items()
+            }
+        )
     reference = images.pop("geometry")
     sky = np.abs(reference - reference[0, 0]).sum(axis=-1) < 4  # the sky's colour
     bands = []
@@ -93,7 +114,10 @@ def main() -> None:
         for mode, image in images.items():
             row[mode] = np.round(image[rows][grass].mean(axis=0) - geometry, 1).tolist()
         bands.append(row)
-    print(json.dumps({"scene": args.scene, "camera": args.camera, "size": size, "bands": bands}))
+    out = {"scene": args.scene, "camera": args.camera, "size": size, "bands": bands}
+    if boxes:
+        out["boxes"] = boxes
+    print(json.dumps(out))
 
 
 if __name__ == "__main__":
