@@ -25,18 +25,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 
-def box_mean(image: np.ndarray, size: int) -> np.ndarray:
-    """Each channel's mean over a size × size box about each pixel (edges repeated)."""
-    pad = size // 2
-    out = np.empty_like(image)
-    for c in range(image.shape[2]):
-        p = np.pad(image[..., c], pad, mode="edge")
-        s = np.pad(np.cumsum(np.cumsum(p, 0), 1), ((1, 0), (1, 0)))
-        out[..., c] = s[size:, size:] - s[:-size, size:] - s[size:, :-size] + s[:-size, :-size]
-    return out / (size * size)
-
-
 def main() -> None:
+    from scipy.ndimage import uniform_filter
+
     from app.quality import QualityRun, shifted
     from app.scenes import get_scene
     from core.quality import Comparison, figures
@@ -108,7 +99,10 @@ def main() -> None:
         result["lod_mean"] = [round(float(v), 1) for v in lod_f[full].mean(axis=0)]
         result["reference_mean"] = [round(float(v), 1) for v in ref_f[full].mean(axis=0)]
     for scale in scales:
-        ratio = box_mean(ref_f, scale) / np.maximum(box_mean(lod_f, scale), 1.0)
+        window = (scale, scale, 1)  # each channel's mean over scale × scale pixels
+        ratio = uniform_filter(ref_f, window, mode="nearest") / np.maximum(
+            uniform_filter(lod_f, window, mode="nearest"), 1.0
+        )
         matched = lod_f.copy()
         matched[full] = lod_f[full] * ratio[full]
         matched = np.clip(np.rint(matched), 0, 255).astype(np.uint8)
