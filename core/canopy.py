@@ -100,13 +100,20 @@ class Canopy:
 
     def reach(self, y: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The same, element by element of y and θ broadcast together."""
+        depths, index = self.depths(y)
+        return np.exp(-depths[index] / np.maximum(np.tan(np.asarray(theta)), 1e-3))
+
+    def depths(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """reach's optical depths: the few values there are ((rows + 1,), the last 0: above the
+        grass) and each y's index into them (y's shape); reach(y, θ) = exp(−depth / tan θ), so
+        a caller with many y per θ takes the exponential once per value and θ."""
         sigma = GAIN * np.mean([profile[0] for profile in self.profiles], axis=0)
         dy = self.height / len(sigma)
         above = np.concatenate([np.cumsum(sigma[::-1])[::-1], [0.0]])  # rows r … top
-        rows = np.clip(np.floor(np.asarray(y) / dy).astype(np.int64), 0, len(sigma) - 1)
-        depth = (above[rows + 1] + 0.5 * sigma[rows]) * dy
-        depth = np.where(np.asarray(y) >= self.height, 0.0, depth)
-        return np.exp(-depth / np.maximum(np.tan(np.asarray(theta)), 1e-3))
+        values = np.append((above[1:] + 0.5 * sigma) * dy, 0.0)
+        y = np.asarray(y)
+        rows = np.clip(np.floor(y / dy).astype(np.int64), 0, len(sigma) - 1)
+        return values, np.where(y >= self.height, len(sigma), rows)
 
     def shade_met(
         self, ao_height: float, under: Canopy | None = None, count: int = ELEVATIONS

@@ -95,6 +95,13 @@ SLOPE_SPAN = np.radians(30.0)  # the outer layers' difference; layer t in -1 …
 RATIO_LIMITS = (0.5, 2.0)  # where a view grazes the ground a few blade tips decide the ratio
 GRAZING = np.radians(1.0)  # the least elevation over the ground a view is counted at
 MAX_RISE = 1.0  # ground steeper than 45° along the view counts as 45°
+# The ground may also rise across the view (a hillside seen obliquely): the upright blades' parts
+# that lean across it then stand higher or lower over the ground beside them, and which of them
+# show depends on it too. Seen 39° off a 14° ramp's fall line with the sun 84° to the side, the
+# blades' diffuse factor is 0.313 (0.320 flat); the model with the rise along the view alone
+# gave 0.299, with the rise across it as well 0.315 (scripts/facing_check.py --azimuths 321).
+ACROSS = 7  # ratio-table blocks: the ground's rise across the view, per unit of run
+ACROSS_SPAN = 0.6  # the outer blocks' rise; block t in -1 … 1 is SPAN · t|t| (to the right: +)
 
 
 def slope_offsets(count: int = SLOPES) -> np.ndarray:
@@ -103,6 +110,14 @@ def slope_offsets(count: int = SLOPES) -> np.ndarray:
     this: shaders/_lighting.glsl)."""
     t = np.linspace(-1.0, 1.0, count)
     return SLOPE_SPAN * t * np.abs(t)
+
+
+def across_rises(count: int = ACROSS) -> np.ndarray:
+    """The table blocks' rise of the ground across the view, to the viewer's right (per unit of
+    run): 0 is the middle block, the blocks dense about it (shaders/_lighting.glsl inverts
+    this)."""
+    t = np.linspace(-1.0, 1.0, count)
+    return ACROSS_SPAN * t * np.abs(t)
 
 
 def slope_means(
@@ -115,13 +130,17 @@ def slope_means(
     to_eye: np.ndarray,
     theta: np.ndarray,
     sample: int = 3000,
+    across: np.ndarray | None = None,
+    sheared: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The blades' diffuse factor seen from directions `to_eye` ((m, 3)) at elevations θ over
-    the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape. Both weigh each vertex by
-    |n · e| and by the share of a view at θ that reaches its height (Canopy.reach): the sheared
-    blade (as the slices are) at its own height y, the upright one at y − g · (its offset from
-    the root along the view), g = tan θ − tan e the ground's rise per unit run away from the
-    eye, and not at all where that is below the ground."""
+    the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape.
+    Both weigh each vertex by |n · e| and by the share of a view at θ that reaches its height
+    (Canopy.reach): the sheared blade (as the slices are) at its own height y, the upright one
+    at y − g · (its offset from the root along the view) − c · (its offset to the viewer's
+    right), g = tan θ − tan e the ground's rise per unit run away from the eye, c its rise to
+    the right (`across`, θ's shape; 0 if not given), and not at all where that is below the
+    ground. With `sheared` False the second array is zeros (not computed)."""
     n = np.asarray(normals, np.float64).reshape(-1, 3)
     length = np.linalg.norm(n, axis=1)
     pick = np.flatnonzero(length > 1e-6)
@@ -139,23 +158,35 @@ def slope_means(
     lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
     away = -e[:, [0, 2]]
     away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
+    right = np.stack([-away[:, 1], away[:, 0]], axis=1)  # (x, z) to the viewer's right
     elevation = np.arcsin(np.clip(e[:, 1], 0.0, 1.0))
     along = offset @ away.T  # (k, m): each vertex's offset from its root along the view
+    sideways = offset @ right.T  # (k, m): and to the right of it
 
     def mean(w: np.ndarray) -> np.ndarray:
         w = w * np.abs(ne)
         return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
 
+    def reach(heights: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """Canopy.reach of (k, m) heights at the m elevations t: the exponential once per
+        depth and direction, then looked up (a build of the table's 63 passes took 2 s)."""
+        depths, at = canopy.depths(heights)
+        through = np.exp(-depths[:, None] / np.maximum(np.tan(t), 1e-3)[None, :])
+        return np.take_along_axis(through, np.broadcast_to(at, heights.shape), axis=0)
+
     thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
-    upright, sheared = np.zeros(thetas.shape), np.zeros(thetas.shape)
+    rises = np.zeros(thetas.shape) if across is None else np.broadcast_to(across, thetas.shape)
+    upright, sheared_mean = np.zeros(thetas.shape), np.zeros(thetas.shape)
     for index in np.ndindex(thetas.shape[:-1]):  # a θ for each direction per pass
         t = thetas[index]
         g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (m,)
         g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
-        upright_y = y - g * along  # (k, m)
-        upright[index] = mean(canopy.reach(upright_y, t) * (upright_y >= 0.0))
-        sheared[index] = mean(canopy.reach(y, t))
-    return upright, sheared
+        c = np.clip(rises[index], -MAX_RISE, MAX_RISE)
+        upright_y = y - g * along - c * sideways  # (k, m)
+        upright[index] = mean(reach(upright_y, t) * (upright_y >= 0.0))
+        if sheared:
+            sheared_mean[index] = mean(reach(y, t))
+    return upright, sheared_mean
 
 
 def slope_tables(
@@ -169,18 +200,30 @@ def slope_tables(
     elevations: int = ELEVATIONS,
     slopes: int = SLOPES,
     sample: int = 3000,
+    blocks: int = ACROSS,
 ) -> np.ndarray:
-    """(slopes, elevations, azimuths, 2) float32 at the table's directions, each layer at
-    elevation over the ground = the direction's + the layer's offset (slope_offsets):
+    """(blocks, slopes, elevations, azimuths, 2) float32 at the table's directions, each layer
+    at elevation over the ground = the direction's + the layer's offset (slope_offsets), each
+    block with the ground rising across the view by its rise (across_rises):
     [..., 0] upright blades over sheared ones (the volume's slices, sheared with the ground),
     [..., 1] upright blades on the slope over upright blades on flat ground seen from the same
     direction (the image-based grass, lit by the flat ground's facing table); 1 on flat ground."""
     e = directions(azimuths, elevations).reshape(-1, 3)
     theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
-    upright, sheared = slope_means(
+    rises = across_rises(blocks)
+    middle = blocks // 2  # no rise across the view
+    upright = np.zeros((blocks, *theta.shape))
+    upright[middle], sheared = slope_means(
         normals, positions, roots, canopy, light_dir, translucency, e, theta, sample
     )
-    flat = upright[slopes // 2]  # the middle layer: elevation over the ground = the direction's
+    others = [b for b in range(blocks) if b != middle]
+    shape = (len(others), *theta.shape)
+    upright[others], _ = slope_means(
+        normals, positions, roots, canopy, light_dir, translucency, e,
+        np.broadcast_to(theta, shape), sample,
+        across=np.broadcast_to(rises[others][:, None, None], shape), sheared=False,
+    )  # fmt: skip
+    flat = upright[middle, slopes // 2]  # elevation over the ground = the direction's, no rise
     out = np.stack(
         [
             np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0),
@@ -188,5 +231,5 @@ def slope_tables(
         ],
         axis=-1,
     )
-    out = np.clip(out, *RATIO_LIMITS).reshape(slopes, elevations, azimuths, 2)
+    out = np.clip(out, *RATIO_LIMITS).reshape(blocks, slopes, elevations, azimuths, 2)
     return out.astype(np.float32)

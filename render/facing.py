@@ -10,7 +10,7 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
-from core.facing import AZIMUTHS, ELEVATIONS, SLOPES, facing_lambert, slope_tables
+from core.facing import ACROSS, AZIMUTHS, ELEVATIONS, SLOPES, facing_lambert, slope_tables
 from core.lighting import Lighting
 from core.patch import GrassPatch
 
@@ -67,8 +67,8 @@ class FacingTable:
 
 
 class SlopeTable:
-    """The slope-ratio tables of one grass type (core/facing.py slope_tables), by view direction
-    and elevation over the ground: upright blades on sloping ground against the sheared slices
+    """The slope-ratio tables of one grass type (core/facing.py slope_tables), by view direction,
+    elevation over the ground and the ground's rise across the view: upright blades on sloping ground against the sheared slices
     (red: the volume multiplies its diffuse factor by it) and against upright blades on flat
     ground (green: the image-based grass, lit by the flat ground's facing table); one 3D float
     texture (shaders/_lighting.glsl slope_ratios), ones until the grass type has slices (its
@@ -82,11 +82,13 @@ class SlopeTable:
         canopy: Callable[[], Canopy | None],
     ) -> None:
         self._patch, self._canopy = patch, canopy
-        self.texture = ctx.texture3d((AZIMUTHS, ELEVATIONS, SLOPES), 2, dtype="f4")
+        # the blocks of the ground's rise across the view one after another along z
+        self.texture = ctx.texture3d((AZIMUTHS, ELEVATIONS, SLOPES * ACROSS), 2, dtype="f4")
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = True  # azimuth wraps
-        self.texture.repeat_y = False  # (z repeats, but is read between its first and last centres)
-        self.texture.write(np.ones((SLOPES, ELEVATIONS, AZIMUTHS, 2), np.float32).tobytes())
+        self.texture.repeat_y = False  # z repeats: a block is read between its end texels' centres
+        ones = np.ones((ACROSS, SLOPES, ELEVATIONS, AZIMUTHS, 2), np.float32)
+        self.texture.write(ones.tobytes())
         self._used: tuple | None = None  # the patch, canopy and light the table is of
 
     def use(self, lighting: Lighting, unit: int = SLOPE_UNIT) -> None:

@@ -133,12 +133,13 @@ def main() -> None:
                 to_eye = np.subtract(eye, camera_spec.target)
                 away = -to_eye[[0, 2]] / np.linalg.norm(to_eye[[0, 2]])
                 rise = away[1] * hs / 32.0  # the ramp rises along z over the bench's 32 cells
+                across = away[0] * hs / 32.0  # and to the right of the view ((-away z, away x))
                 theta = math.atan(math.tan(el) + rise)
                 vertices, canopy = model
                 upright, sheared = slope_means(
                     vertices["normal"], vertices["position"], vertices["root"], canopy,
                     project.light.sun_direction, project.light.translucency,
-                    to_eye[None, :], np.array([theta]),
+                    to_eye[None, :], np.array([theta]), across=np.array([across]),
                 )  # fmt: skip
                 row["model"] = {"upright": round(float(upright[0]), 3),
                                 "sheared": round(float(sheared[0]), 3)}  # fmt: skip

@@ -35,29 +35,51 @@ float facing_lambert(vec3 to_eye) {
 
 // Upright blades on sloping ground against the slices, which are sheared with it (core/
 // facing.py slope_tables, render/facing.py): the factor on a far representation's diffuse light
-// seen from to_eye at elevation theta over the ground (radians); 1 on flat ground. The table's
-// layers hold elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1.
+// seen from to_eye at elevation theta over the ground (radians), the ground rising `across` per
+// unit of run to the viewer's right; 1 on flat ground. Within a block the table's layers hold
+// elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1; its blocks,
+// one after another along z, rises across the view of ACROSS_SPAN · s|s|, s in -1 … 1.
 uniform bool u_slopes;
 uniform sampler3D u_slope_ratio;
 const float SLOPE_SPAN = 0.52359878;  // core/facing.py SLOPE_SPAN (30°)
 const float SLOPE_LAYERS = 9.0;       // core/facing.py SLOPES
+const float ACROSS_SPAN = 0.6;        // core/facing.py ACROSS_SPAN
+const float ACROSS_BLOCKS = 7.0;      // core/facing.py ACROSS
 
-vec2 slope_ratios(vec3 to_eye, float theta) {
+// the ground's rise per unit of run to the right of a view towards -to_eye, from its gradient
+// (d height / dx, d height / dz)
+float rise_across(vec3 to_eye, vec2 gradient) {
+    vec2 away = -to_eye.xz / max(length(to_eye.xz), 1e-6);
+    return dot(gradient, vec2(-away.y, away.x));
+}
+
+vec2 slope_ratios(vec3 to_eye, float theta, float across) {
     if (!u_slopes) return vec2(1.0);
     vec3 e = normalize(to_eye);
     float elevation = asin(clamp(e.y, 0.0, 1.0));
     float du = theta - elevation;
     float t = clamp(sign(du) * sqrt(abs(du) / SLOPE_SPAN), -1.0, 1.0);
-    float layer = ((t + 1.0) * 0.5 * (SLOPE_LAYERS - 1.0) + 0.5) / SLOPE_LAYERS;
-    return textureLod(u_slope_ratio, vec3(atan(e.x, e.z) * 0.15915494, elevation * 0.63661977, layer), 0.0).rg;
+    float layer = (t + 1.0) * 0.5 * (SLOPE_LAYERS - 1.0) + 0.5;  // texels into a block
+    float s = clamp(sign(across) * sqrt(abs(across) / ACROSS_SPAN), -1.0, 1.0);
+    float block = (s + 1.0) * 0.5 * (ACROSS_BLOCKS - 1.0);
+    float b0 = min(floor(block), ACROSS_BLOCKS - 2.0);
+    vec2 uv = vec2(atan(e.x, e.z) * 0.15915494, elevation * 0.63661977);
+    float depth = SLOPE_LAYERS * ACROSS_BLOCKS;
+    vec2 r0 = textureLod(u_slope_ratio, vec3(uv, (b0 * SLOPE_LAYERS + layer) / depth), 0.0).rg;
+    vec2 r1 = textureLod(u_slope_ratio, vec3(uv, ((b0 + 1.0) * SLOPE_LAYERS + layer) / depth), 0.0).rg;
+    return mix(r0, r1, block - b0);
 }
 
 // the volume's: upright blades against the sheared slices
-float slope_ratio(vec3 to_eye, float theta) { return slope_ratios(to_eye, theta).r; }
+float slope_ratio(vec3 to_eye, float theta, float across) {
+    return slope_ratios(to_eye, theta, across).r;
+}
 
 // the image-based grass's: upright blades on the slope against upright blades on flat ground,
 // whose light its facing table holds
-float slope_ratio_flat(vec3 to_eye, float theta) { return slope_ratios(to_eye, theta).g; }
+float slope_ratio_flat(vec3 to_eye, float theta, float across) {
+    return slope_ratios(to_eye, theta, across).g;
+}
 
 vec3 shade(vec3 albedo, vec3 n, float ao, vec3 ambient_map, vec3 diffuse_map) {
     return albedo * (u_ambient_color * ambient_map * ao + u_light_color * diffuse_map * lambert_through(n));

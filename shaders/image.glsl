@@ -114,6 +114,7 @@ void main() {
     if (ground_up.y < 0.0) ground_up = -ground_up;
     vec3 u = normalize(u_eye - v_world);
     float theta = atan(max(dot(u, ground_up), 0.0), max(ground_up.y * length(u.xz), 1e-4));
+    float across = rise_across(u, -ground_up.xz / max(ground_up.y, 1e-3));  // the slope's other part
     float sin_up = max(sin(theta), 0.02);
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
     // the table's row for this elevation over the ground (θ_j = 90° ((j + ½) / 8)²)
@@ -152,7 +153,7 @@ void main() {
     // blades there differ from those on flat ground at this elevation over the ground
     // (slope_ratio_flat: the DEM's tall grass far away was 10/255 too bright without it).
     float detail = lambert_through(n) / max(lambert_through(u_mean_normal), 0.05);
-    float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0) * slope_ratio_flat(to_eye, theta);
+    float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0) * slope_ratio_flat(to_eye, theta, across);
     // AO_blade (eq. 6.11) of what the view meets of the blades
     float shade = mix(mix(u_level_shade[i], u_level_shade[j], row - float(i)),
                       mix(u_over_shade[i], u_over_shade[j], row - float(i)), under);

@@ -203,7 +203,7 @@ void main() {
             - ground_density(design_uv(v_config, e.xz - vec2(0.0, 1.0))).x);
     vec3 ground_up = normalize(vec3(-0.5 * slope.x, 1.0, -0.5 * slope.y));
     float over_ground = atan(max(dot(-d, ground_up), 0.0), max(ground_up.y * length(d.xz), 1e-4));
-    float slope_l = slope_ratio(-d, over_ground);
+    float slope_l = slope_ratio(-d, over_ground, rise_across(-d, 0.5 * slope));
     // Opacity per slice crossed. A slice holds what a ray across its slab meets at right
     // angles, and both families hold every blade: a ray travelling a unit of the patch across
     // meets |d.x| N slices of one and |d.z| N of the other, where it meets the blades of N

@@ -73,7 +73,7 @@ def _uniform_canopy(height: float = 1.0):
 
 
 def test_slope_ratios_are_one_on_flat_ground():
-    from core.facing import SLOPES, slope_tables
+    from core.facing import ACROSS, SLOPES, slope_tables
 
     rng = np.random.default_rng(5)
     normals = rng.normal(size=(400, 3))
@@ -82,9 +82,9 @@ def test_slope_ratios_are_one_on_flat_ground():
     positions[:, [0, 2]] += rng.normal(scale=0.1, size=(400, 2))
     light = np.array([0.3, 0.8, -0.5]) / np.linalg.norm([0.3, 0.8, -0.5])
     table = slope_tables(normals, positions, roots, _uniform_canopy(), light, 0.3)
-    assert table.shape == (SLOPES, 8, 32, 2)
-    np.testing.assert_allclose(table[SLOPES // 2], 1.0, atol=1e-5)  # both layers
-    assert (np.abs(table - 1.0).max(axis=(0, 1, 2)) > 0.02).all()  # and both move off flat
+    assert table.shape == (ACROSS, SLOPES, 8, 32, 2)
+    np.testing.assert_allclose(table[ACROSS // 2, SLOPES // 2], 1.0, atol=1e-5)  # both layers
+    assert (np.abs(table - 1.0).max(axis=(0, 1, 2, 3)) > 0.02).all()  # and both move off flat
 
 
 def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
@@ -93,7 +93,7 @@ def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
     eye, the tips leaning up the slope come close to it and hide: upright blades are darker than
     blades sheared with the ground (ratio < 1; the volume's layer) and than upright blades on
     flat ground (the image-based grass's layer); where it falls away, brighter (> 1)."""
-    from core.facing import SLOPES, slope_tables
+    from core.facing import ACROSS, SLOPES, slope_tables
 
     k = 200
     roots = np.zeros((2 * k, 2))
@@ -103,7 +103,31 @@ def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
     table = slope_tables(normals, positions, roots, _uniform_canopy(), np.array([0, 1.0, 0]), 0.0)
     towards_minus_z = 15  # a column beside azimuth 180 degrees (174.4): the eye at -z
     for layer in (0, 1):
-        low = table[:, 1, towards_minus_z, layer]  # the second row: ~17 degrees over the horizon
+        # the second row: ~17 degrees over the horizon; no rise across the view
+        low = table[ACROSS // 2, :, 1, towards_minus_z, layer]
         assert low[SLOPES // 2] == 1.0
         assert (low[SLOPES // 2 + 1 :] < 0.97).all(), (layer, low)  # rising away: darker
         assert (low[: SLOPES // 2] > 1.03).all(), (layer, low)  # falling away: brighter
+
+
+def test_upright_blades_on_ground_rising_across_the_view_show_the_parts_that_lean_down_it():
+    """Seen from -z (looking towards +z, the viewer's right is -x), tips leaning to the right
+    face the sky (lit by a sun overhead), tips leaning to the left face sideways (dark). Where
+    the ground rises to the right, the tips leaning up it come close to it and hide: darker
+    than flat ground; where it falls to the right, brighter. A hillside seen obliquely has
+    both rises: with the rise along the view alone the model was 4.5 % too dark there
+    (core/facing.py)."""
+    from core.facing import ACROSS, SLOPES, slope_tables
+
+    k = 200
+    roots = np.zeros((2 * k, 2))
+    up, side = [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]
+    normals = np.array([up] * k + [side] * k)
+    positions = np.array([[-0.3, 0.5, 0.0]] * k + [[0.3, 0.5, 0.0]] * k)  # right, left
+    table = slope_tables(normals, positions, roots, _uniform_canopy(), np.array([0, 1.0, 0]), 0.0)
+    towards_minus_z = 15  # a column beside azimuth 180 degrees (174.4): the eye at -z
+    for layer in (0, 1):
+        across = table[:, SLOPES // 2, 1, towards_minus_z, layer]  # no rise along the view
+        assert across[ACROSS // 2] == 1.0
+        assert (across[ACROSS // 2 + 1 :] < 0.97).all(), (layer, across)  # rising to the right
+        assert (across[: ACROSS // 2] > 1.03).all(), (layer, across)  # falling to the right
