@@ -8,7 +8,7 @@ ambient-only view. Sun over ambient over the window is the diffuse factor the gr
     .venv/bin/python scripts/facing_check.py PROJECT [--type 1] [--distance 20]
         [--height-scale 0] [--elevations 5,10,20] [--azimuths 0,90,180,270]
         [--modes geometry,image] [--predict] [--wind DIRECTION,STRENGTH]
-        [--sun-elevation DEGREES] [--translucency T]
+        [--sun-elevation DEGREES] [--sun-azimuth DEGREES] [--translucency T]
 
 `--wind` blows a wind of one gust over the grid (gusts 200 m across, no turbulence): the lean
 at the grid's centre is printed with each view. Azimuth 0 puts the camera at -z looking
@@ -58,6 +58,7 @@ def main() -> None:
         help="DIRECTION,STRENGTH: a nearly uniform wind (degrees, gust strength), else still air",
     )  # fmt: skip
     ap.add_argument("--sun-elevation", type=float, help="degrees (default: the project's)")
+    ap.add_argument("--sun-azimuth", type=float, help="degrees (default: the project's)")
     ap.add_argument("--translucency", type=float, help="0 … 1 (default: the project's)")
     args = ap.parse_args()
     wind = Wind()
@@ -72,6 +73,8 @@ def main() -> None:
     project = load_project(args.project)
     if args.sun_elevation is not None:
         project.light = dataclasses.replace(project.light, sun_elevation=args.sun_elevation)
+    if args.sun_azimuth is not None:
+        project.light = dataclasses.replace(project.light, sun_azimuth=args.sun_azimuth)
     if args.translucency is not None:
         project.light = dataclasses.replace(project.light, translucency=args.translucency)
     params = project.params(args.type).replace(
