@@ -160,8 +160,11 @@ def slope_means(
     away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
     right = np.stack([-away[:, 1], away[:, 0]], axis=1)  # (x, z) to the viewer's right
     elevation = np.arcsin(np.clip(e[:, 1], 0.0, 1.0))
-    along = offset @ away.T  # (k, m): each vertex's offset from its root along the view
-    sideways = offset @ right.T  # (k, m): and to the right of it
+    # the (k, m) arrays in single precision: a table's 72 passes take 2/3 of the time, the
+    # table differs from double precision by under 3e-4
+    along = (offset @ away.T).astype(np.float32)  # each vertex's offset from its root …
+    sideways = (offset @ right.T).astype(np.float32)  # … along the view and to its right
+    y, ne, lit = y.astype(np.float32), ne.astype(np.float32), lit.astype(np.float32)
 
     def mean(w: np.ndarray) -> np.ndarray:
         w = w * np.abs(ne)
@@ -179,9 +182,9 @@ def slope_means(
     upright, sheared_mean = np.zeros(thetas.shape), np.zeros(thetas.shape)
     for index in np.ndindex(thetas.shape[:-1]):  # a θ for each direction per pass
         t = thetas[index]
-        g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE)  # (m,)
+        g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE).astype(np.float32)
         g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
-        c = np.clip(rises[index], -MAX_RISE, MAX_RISE)
+        c = np.clip(rises[index], -MAX_RISE, MAX_RISE).astype(np.float32)
         upright_y = y - g * along - c * sideways  # (k, m)
         upright[index] = mean(reach(upright_y, t) * (upright_y >= 0.0))
         if sheared:

@@ -4,6 +4,8 @@ the light changes. The volume and image-based shaders light with it (shaders/_li
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from collections.abc import Callable
 
 import moderngl
@@ -16,6 +18,31 @@ from core.patch import GrassPatch
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 SLOPE_UNIT = 12  # texture unit of the slope-ratio table
+KEPT_TABLES = 8  # slope-ratio tables kept by what they are of (a build takes about a second)
+_kept: OrderedDict[tuple, np.ndarray] = OrderedDict()
+
+
+def kept_slope_tables(patch: GrassPatch, canopy: Canopy, lighting: Lighting) -> np.ndarray:
+    """core/facing.py slope_tables of this patch, canopy and light, the last KEPT_TABLES kept:
+    each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
+    and the full frame's, every test's), and a build takes about a second."""
+    digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
+    for sigma, colour in canopy.profiles:
+        digest.update(np.ascontiguousarray(sigma).tobytes())
+        digest.update(np.ascontiguousarray(colour).tobytes())
+    key = (digest.digest(), canopy.height, *lighting.sun_direction, lighting.translucency)
+    table = _kept.get(key)
+    if table is None:
+        v = patch.vertices
+        table = slope_tables(
+            v["normal"], v["position"], v["root"], canopy,
+            lighting.sun_direction, lighting.translucency,
+        )  # fmt: skip
+        _kept[key] = table
+        while len(_kept) > KEPT_TABLES:
+            _kept.popitem(last=False)
+    _kept.move_to_end(key)
+    return table
 
 
 class FacingTable:
@@ -97,11 +124,7 @@ class SlopeTable:
         if patch is not None and canopy is not None:
             old = self._used
             if old is None or old[0] is not patch or old[1] is not canopy or old[2] != light:
-                v = patch.vertices
-                table = slope_tables(
-                    v["normal"], v["position"], v["root"], canopy,
-                    lighting.sun_direction, lighting.translucency,
-                )  # fmt: skip
+                table = kept_slope_tables(patch, canopy, lighting)
                 self.texture.write(np.ascontiguousarray(table).tobytes())
                 self._used = (patch, canopy, light)
         self.texture.use(unit)
