@@ -95,11 +95,12 @@ class FacingTable:
 
 class SlopeTable:
     """The slope-ratio tables of one grass type (core/facing.py slope_tables), by view direction,
-    elevation over the ground and the ground's rise across the view: upright blades on sloping ground against the sheared slices
-    (red: the volume multiplies its diffuse factor by it) and against upright blades on flat
-    ground (green: the image-based grass, lit by the flat ground's facing table); one 3D float
-    texture (shaders/_lighting.glsl slope_ratios), ones until the grass type has slices (its
-    canopy), rebuilt when the patch, the canopy or the light changes. (The volume's ratio on
+    elevation over the ground and the ground's rise across the view: upright blades on sloping
+    ground against the sheared slices (red: the volume multiplies its diffuse factor by it) and
+    against upright blades on flat ground (green: the image-based grass, lit by the flat
+    ground's facing table); one 3D float texture (shaders/_lighting.glsl slope_ratios), ones
+    until the grass type has slices (its canopy), rebuilt when the patch, the canopy or the
+    light changes (kept_slope_tables). (The volume's ratio on
     the image-based grass made the meadow's far field worse: README.)"""
 
     def __init__(

@@ -37,8 +37,8 @@ float facing_lambert(vec3 to_eye) {
 // facing.py slope_tables, render/facing.py): the factor on a far representation's diffuse light
 // seen from to_eye at elevation theta over the ground (radians), the ground rising `across` per
 // unit of run to the viewer's right; 1 on flat ground. Within a block the table's layers hold
-// elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1; its blocks,
-// one after another along z, rises across the view of ACROSS_SPAN · s|s|, s in -1 … 1.
+// elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1; the blocks,
+// one after another along z, hold rises across the view of ACROSS_SPAN · s|s|, s in -1 … 1.
 uniform bool u_slopes;
 uniform sampler3D u_slope_ratio;
 const float SLOPE_SPAN = 0.52359878;  // core/facing.py SLOPE_SPAN (30°)
