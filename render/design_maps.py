@@ -14,6 +14,7 @@ import moderngl
 import numpy as np
 
 from core.design_maps import LAYER_INDEX, DesignMaps, Rect
+from core.heights import mesh_sink, mesh_size, quad_excess, vertex_sink
 from render.uniforms import DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
@@ -42,6 +43,8 @@ class DesignMapTextures:
         self.uploaded_texels = w * h * layers  # for tests and the profiler: what went to the GPU
         self.pending: dict[int, Rect] = {}  # layer index -> dirty rectangle not yet uploaded
         self.grounds: dict[int, moderngl.Texture] = {}  # density channel -> (height, density)
+        self._sink: moderngl.Texture | None = None  # the ground mesh's sink per vertex
+        self._excess: np.ndarray | None = None  # … and its per-quad excess (core/heights.py)
         maps.changed.connect(self.update)
 
     def _ground_texels(self, channel: int, rect: Rect) -> bytes:
@@ -65,6 +68,32 @@ class DesignMapTextures:
             self.grounds[channel] = texture
         return texture
 
+    def mesh_sink(self) -> tuple[moderngl.Texture, tuple[int, int]]:
+        """How far each vertex of the ground mesh sinks to lie under the grass's ground
+        (core/heights.py mesh_sink; made at first use, its rows redone when heights change),
+        and the mesh's quads per side."""
+        quads = mesh_size(self.maps.size)
+        if self._sink is None:
+            sink, self._excess = mesh_sink(self.maps.stack[HEIGHT, ..., 0], quads)
+            self._sink = self.ctx.texture(
+                (quads[0] + 1, quads[1] + 1), 1, sink.tobytes(), dtype="f4"
+            )
+            self._sink.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        return self._sink, quads
+
+    def _update_sink(self, rect: Rect) -> None:
+        """Redo the quad rows of the ground mesh that the height texels in `rect` reach."""
+        if self._sink is None or self._excess is None:
+            return
+        nu, nv = mesh_size(self.maps.size)
+        texel_rows = self.maps.size[1]
+        b0 = max(int(np.floor((rect[1] - 1) * nv / texel_rows)), 0)
+        b1 = min(int(np.ceil((rect[1] + rect[3] + 1) * nv / texel_rows)), nv)
+        if b1 > b0:
+            heights = self.maps.stack[HEIGHT, ..., 0]
+            self._excess[b0:b1] = quad_excess(heights, (nu, nv), (b0, b1))
+            self._sink.write(vertex_sink(self._excess).tobytes())
+
     def update(self, name: str, rect: Rect) -> None:
         """Note a changed rectangle of one map; the next `flush` uploads it."""
         if rect[2] > 0 and rect[3] > 0:
@@ -85,6 +114,8 @@ class DesignMapTextures:
         if rect is not None:
             for channel, texture in self.grounds.items():
                 texture.write(self._ground_texels(channel, rect), viewport=rect)
+        if HEIGHT in self.pending:
+            self._update_sink(self.pending[HEIGHT])
         self.pending.clear()
 
     def use(self, channels=()) -> None:
@@ -102,3 +133,5 @@ class DesignMapTextures:
         self.texture.release()
         for texture in self.grounds.values():
             texture.release()
+        if self._sink is not None:
+            self._sink.release()

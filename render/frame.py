@@ -390,7 +390,9 @@ class FramePipeline:
         self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
         self.tiling.use()
         self.wind_noise.use()
-        stats.t_m_ms += timed(lambda: (self.ground.draw(frame), self.props.draw(frame)))
+        stats.t_m_ms += timed(
+            lambda: (self.ground.draw(frame, self.map_textures), self.props.draw(frame))
+        )
 
         drawn = []
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):

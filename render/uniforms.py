@@ -16,6 +16,7 @@ DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
 GROUND_UNIT = 8
 TILING_UNIT = 5  # the aperiodic tiling's noise map (render/tiling.py)
 WIND_UNIT = 13  # the wind's noise map (render/wind.py)
+SINK_UNIT = 14  # how far the ground mesh's vertices sink (render/ground.py)
 
 
 @dataclass

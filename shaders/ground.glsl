@@ -11,6 +11,9 @@ uniform float u_extent;
 uniform vec4 u_grass_rect;     // xmin, zmin, xmax, zmax of the grassed cells
 uniform float u_mesh;          // 1: this is the grid over the grassed cells, following the heights
 uniform float u_sink;          // how far the surrounding plane lies below y = 0
+// per vertex of the grid, how far it sinks so that its triangles, chords of the height map's
+// surface, lie on or under the ground the grass stands on (core/heights.py mesh_sink)
+uniform sampler2D u_sink_map;
 
 in vec2 in_corner;             // -1 … 1 (the plane) or 0 … 1 (the grid over the cells)
 out vec3 v_world;
@@ -18,7 +21,9 @@ out vec3 v_world;
 void main() {
     if (u_mesh > 0.5) {
         vec2 p = mix(u_grass_rect.xy, u_grass_rect.zw, in_corner);
-        v_world = vec3(p.x, ground_height(in_corner), p.y);
+        ivec2 vertex = ivec2(round(in_corner * vec2(textureSize(u_sink_map, 0) - 1)));
+        float sink = texelFetch(u_sink_map, vertex, 0).r;
+        v_world = vec3(p.x, ground_height(in_corner) - u_height_scale * sink, p.y);
     } else {
         v_world = vec3(in_corner.x * u_extent, -u_sink, in_corner.y * u_extent);
     }

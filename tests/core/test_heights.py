@@ -2,7 +2,15 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from core.heights import bilinear, cell_ranges, hills
+from core.heights import (
+    bilinear,
+    cell_ranges,
+    hills,
+    mesh_sink,
+    mesh_size,
+    quad_excess,
+    vertex_sink,
+)
 
 
 def test_bilinear_hits_texel_centres_and_interpolates_between():
@@ -37,3 +45,61 @@ def test_hills_span_zero_to_one_and_vary_smoothly():
     h = hills(64, seed=3)
     assert h.min() == 0.0 and h.max() == 1.0
     assert np.abs(np.diff(h, axis=0)).max() < 0.2
+
+
+def _mesh_over_surface(heights, quads, sink, samples=60000, seed=0):
+    """The most the ground mesh (vertices sunk by `sink`) rises over the bilinear surface at
+    random points (height-map units)."""
+    nu, nv = quads
+    h = heights.astype(np.float16).astype(np.float64)  # what the textures hold
+    rng = np.random.default_rng(seed)
+    u, v = rng.random(samples), rng.random(samples)
+    a = np.minimum((u * nu).astype(int), nu - 1)
+    b = np.minimum((v * nv).astype(int), nv - 1)
+    fu, fv = u * nu - a, v * nv - b
+    iu, iv = np.meshgrid(np.arange(nu + 1) / nu, np.arange(nv + 1) / nv, indexing="xy")
+    vertex = bilinear(h, iu, iv) - sink
+    h00, h10, h01, h11 = vertex[b, a], vertex[b, a + 1], vertex[b + 1, a], vertex[b + 1, a + 1]
+    mesh = np.where(
+        fu + fv <= 1.0,
+        h00 + fu * (h10 - h00) + fv * (h01 - h00),
+        h11 + (1 - fu) * (h01 - h11) + (1 - fv) * (h10 - h11),
+    )
+    return float((mesh - bilinear(h, u, v)).max())
+
+
+@settings(max_examples=20, deadline=None)
+@given(
+    width=st.integers(2, 70),
+    height=st.integers(2, 70),
+    nu=st.integers(1, 40),
+    nv=st.integers(1, 40),
+    seed=st.integers(0, 100),
+)
+def test_sunk_ground_mesh_lies_under_the_surface(width, height, nu, nv, seed):
+    heights = np.random.default_rng(seed).random((height, width)).astype(np.float32)
+    sink, _ = mesh_sink(heights, (nu, nv))
+    assert sink.shape == (nv + 1, nu + 1) and sink.min() >= 0.0
+    assert _mesh_over_surface(heights, (nu, nv), sink, seed=seed) <= 1e-9
+
+
+def test_unsunk_mesh_of_hollows_would_rise_over_the_surface_and_sinks_only_that_far():
+    heights = hills(256, seed=11, period=5)
+    quads = (64, 64)  # four texels a quad: chords across the hollows
+    assert _mesh_over_surface(heights, quads, np.zeros((65, 65))) > 0.002
+    sink, _ = mesh_sink(heights, quads)
+    assert _mesh_over_surface(heights, quads, sink) <= 1e-9
+    # no deeper than the chords' own rise: a ramp (bilinear = planar) sinks by the margin only
+    ramp = np.tile(np.linspace(0.0, 1.0, 50, dtype=np.float32), (40, 1))
+    assert mesh_sink(ramp, (25, 20))[0].max() < 0.01
+
+
+def test_an_edit_redoes_only_the_rows_it_reaches_with_the_same_result():
+    heights = hills(96, seed=2)
+    quads = mesh_size((96, 96))
+    assert quads == (96, 96)  # a quad per texel up to MESH_LIMIT
+    _, excess = mesh_sink(heights, quads)
+    edited = heights.copy()
+    edited[40:50, 10:30] += 0.2
+    excess[38:52] = quad_excess(edited, quads, (38, 52))
+    assert np.array_equal(vertex_sink(excess), mesh_sink(edited, quads)[0])

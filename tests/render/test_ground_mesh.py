@@ -1,0 +1,50 @@
+"""The ground mesh under hilly grass (thesis 6.4.4): its triangles are chords of the height
+map's surface, and in hollows a chord rises over the ground the grass stands on and would hide
+the grass (bare patches in the landscape's volume zone). Sunk by core/heights.py mesh_sink,
+the mesh lies under the grass everywhere."""
+
+import dataclasses
+
+import numpy as np
+
+from app.scenes import get_scene
+from core import heights
+from core.camera import Camera
+from core.heights import hills
+from core.lod import LodConfig, LodLevel
+
+BASE = get_scene("patch-grid")
+# rolling hills over 64 × 64 cells; the mesh held to 8 quads a side (as a large terrain's mesh
+# spans many cells a quad), so that its chords across the hollows rise over the surface by
+# more than the grass is tall
+SCENE = dataclasses.replace(
+    BASE,
+    grid=(64, 64),
+    height_map=lambda w, h: hills(64, seed=11, period=2)[:h, :w],
+    height_scale=12.0,
+    map_size=(64, 64),
+    lod=LodConfig((LodLevel("volume", 0.0, None, slices=4, macro=4, max_unplanarity=8.0),)),
+)
+CAMERA = Camera.from_eye_target((0.0, 16.0, 40.0), (0.0, 4.0, 0.0), fov_y=50.0)
+
+
+def bare_share(headless, monkeypatch, sink: bool) -> float:
+    """The share of the frame where the soil under the grass shows (drawn magenta)."""
+    monkeypatch.setattr(heights, "MESH_LIMIT", 8)
+    renderer = headless(SCENE.document(), mode="volume")
+    renderer.pipeline.ground.under_grass = (1.0, 0.0, 1.0)
+    if not sink:  # the chords as they are: every vertex on the surface
+        maps = renderer.pipeline.map_textures
+        texture, _ = maps.mesh_sink()
+        texture.write(np.zeros(texture.width * texture.height, np.float32).tobytes())
+    image, _ = renderer.render(CAMERA, (240, 160))
+    rgb = image.astype(np.int32)
+    magenta = (rgb[..., 0] - rgb[..., 1] > 60) & (rgb[..., 2] - rgb[..., 1] > 60)
+    return float(magenta.mean())
+
+
+def test_sunk_ground_mesh_lets_the_grass_in_hollows_show(headless, monkeypatch):
+    chords = bare_share(headless, monkeypatch, sink=False)
+    sunk = bare_share(headless, monkeypatch, sink=True)
+    assert chords > 0.02  # the case shows the defect when the mesh is not sunk
+    assert sunk < 0.25 * chords
