@@ -156,9 +156,21 @@ class GrassTypeRenderer:
             renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
             if renderer is None:
                 renderer = self.volume(n)
+                renderer.volume_partner = self._volume_partners(n)
             renderer.set_instances(instances)
             batches[key] = (renderer, int(instances.size))
         return batches
+
+    def _volume_partners(self, slices: int) -> tuple[bool, bool]:
+        """Whether a volume level of `slices` slices has a volume level just before it and
+        just after it in distance."""
+        levels = self.lod.levels
+        before = after = False
+        for i, level in enumerate(levels):
+            if level.representation == "volume" and level.slices == slices:
+                before |= i > 0 and levels[i - 1].representation == "volume"
+                after |= i + 1 < len(levels) and levels[i + 1].representation == "volume"
+        return before, after
 
     def release(self) -> None:
         for renderer in self.renderers:

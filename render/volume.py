@@ -55,6 +55,9 @@ class VolumeRenderer(InstancedRenderer):
         self.density = 1.0
         self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
         self.slope: SlopeTable | None = None  # the same
+        # whether the level before / after this one in distance is a volume as well (set by
+        # the grass type from its LOD levels): their transitions composite two veils
+        self.volume_partner = (False, False)
 
     def set_slices(self, textures: SliceTextures | None, owned: bool = True) -> None:
         """The slices to draw. With owned=False the caller keeps and releases them."""
@@ -88,6 +91,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
         p["u_overrun"].value = self.overrun
+        p["u_volume_partner"].value = tuple(float(v) for v in self.volume_partner)
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)

@@ -58,6 +58,7 @@ uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
 uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
 uniform float u_overrun;       // cells a ray may run on past its cuboid
+uniform vec2 u_volume_partner; // 1 where the level before (x) or after (y) is a volume too
 // the vertical slices, stacked along v: the N across x (u runs along z), then the N across z
 // (u runs along x); one texture for both, so that a step fetches once (render/slices.py)
 uniform sampler2D u_side_color;
@@ -159,12 +160,24 @@ void main() {
         vec3 t1 = (vec3(v_size.x, top, v_size.y) - e) * inv;
         vec3 tmax = max(t0, t1);
         float leave = max(min(min(tmax.x, tmax.y), tmax.z), 0.0);
-        float start = 0.0;
+        float start = 0.0, below = -1.0;
         for (int k = 1; k <= u_skip_steps; ++k) {
             float lam = leave * float(k) / float(u_skip_steps);
             vec3 p = e + lam * d;
-            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + u_height) break;
+            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + u_height) {
+                below = lam;
+                break;
+            }
             start = lam;
+        }
+        // then halve the step between the last point above the grass and the first in it: a
+        // start up to a coarse step short of the grass left the ray's slice steps used up in
+        // empty air in bands that follow the ground's contours (stripes on hillsides)
+        for (int k = 0; k < 5 && below > 0.0; ++k) {
+            float lam = 0.5 * (start + below);
+            vec3 p = e + lam * d;
+            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + u_height) below = lam;
+            else start = lam;
         }
         e += start * d;
     }
@@ -216,6 +229,15 @@ void main() {
     const float CROSSING_GAIN = 1.5;
     float crossing = CROSSING_GAIN / max(abs(d.x) + abs(d.z), 0.25);
     float depth_lambda = -1.0;
+    // The depth written is that of the point where the ray became this opaque. Inside a
+    // transition to another volume level, that level draws the rest of these cells' blades
+    // in the same place, also as a veil: a fragment holding part of them, its depth written
+    // where it was half opaque, hid half of the other level's fragments behind it, and the
+    // ground showed in the transition band (landscape valley); there the depth is written
+    // only where the ray is opaque. (Blades next to a volume are opaque and drawn first.)
+    bool to_volume = v_lod.y < 0.5 ? v_lod.x < 1.0 && u_volume_partner.y > 0.5
+                                   : v_lod.x > 0.0 && u_volume_partner.x > 0.5;
+    float depth_alpha = to_volume ? u_opaque : 0.5;
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
     // or if there is none: u_floor < 0);
@@ -270,7 +292,7 @@ void main() {
         float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
         if (floor_lambda < lambda) {  // the horizontal slice lies before the next vertical one
             gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
-            if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = floor_lambda;
+            if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
             floor_lambda = 1e30;
             if (g_alpha > u_opaque) break;
         }
@@ -330,14 +352,14 @@ void main() {
             float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
             float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
             gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
-            if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = lambda;
+            if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = lambda;
             if (g_alpha > u_opaque) break;
         }
         if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
     }
     if (floor_lambda < 1e29 && g_alpha <= u_opaque) {  // left the slices before the plane
         gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
-        if (depth_lambda < 0.0 && g_alpha > 0.5) depth_lambda = floor_lambda;
+        if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
     }
     if (g_alpha < 0.01) discard;
     vec2 duv = design_uv(v_config, g_at / g_alpha);
