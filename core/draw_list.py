@@ -15,6 +15,7 @@ import numpy as np
 
 from core.frustum import Frustum
 from core.lod import LodConfig, LodLevel
+from core.lod import fades as lod_fades
 from core.lod import select as lod_select
 from core.occupancy import DensityOccupancy
 from core.terrain import Terrain
@@ -29,6 +30,8 @@ class DrawList:
     """(representation, slices) -> the cells to draw (macro-cells have size > 1)."""
 
     batches: dict[Key, np.ndarray] = field(default_factory=dict)
+    # per key, the transitions' distances a shader weighs each blade by (core/lod.py fades)
+    fades: dict[Key, tuple[float, float, float, float]] = field(default_factory=dict)
 
     def counts(self) -> dict[Key, int]:
         return {key: int(cells.size) for key, cells in self.batches.items()}
@@ -61,7 +64,7 @@ def draw_list(
     grouped: dict[Key, list[np.ndarray]] = {}
     for level, part in zip(config.levels, parts, strict=True):
         grouped.setdefault(level.key, []).append(part)
-    out = DrawList()
+    out = DrawList(fades=lod_fades(config))
     for key, chunks in grouped.items():
         cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
         out.batches[key] = back_to_front(cells, eye) if key[0] == "volume" else cells

@@ -237,6 +237,29 @@ class LodConfig:
         return dataclasses.replace(self, levels=tuple(levels))
 
 
+NO_FADE = (0.0, 0.0, 0.0, 0.0)  # fades: no transition on that side (e2 <= e1)
+
+
+def fades(config: LodConfig) -> dict[tuple[str, int], tuple[float, float, float, float]]:
+    """Per renderer key (representation, slices), the distances (e1, e2) of eq. 5.23 for its
+    level's transition from the previous level and for its transition to the next one, so that
+    a shader can weigh each blade, ray sample or texel by its own distance where the cell's
+    (w, side) says it lies in a transition; both levels of a pair then split the blades at the
+    same place, pixel by pixel, and no cell or macro-cell shows as a block. A key that draws
+    more than one level gets NO_FADE (the cells' own w)."""
+    levels = config.levels
+    out: dict[tuple[str, int], tuple[float, float, float, float]] = {}
+    seen: set[tuple[str, int]] = set()
+    for i, level in enumerate(levels):
+        key = level.key
+        before = (level.begin, levels[i - 1].end) if i > 0 else NO_FADE[:2]
+        after = (levels[i + 1].begin, level.end) if i + 1 < len(levels) else NO_FADE[:2]
+        fade = (float(before[0]), float(before[1]), float(after[0]), float(after[1]))
+        out[key] = NO_FADE if key in seen else fade
+        seen.add(key)
+    return out
+
+
 def classify(d: np.ndarray, config: LodConfig) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per level: which distances it draws (mask) and their (w, side) per eq. 5.23-5.26."""
     levels = config.levels

@@ -127,3 +127,96 @@ def heat_map(error: np.ndarray) -> np.ndarray:
     e = np.clip(np.asarray(error, np.float32), 0.0, 1.0)
     rgb = np.stack([np.clip(3 * e, 0, 1), np.clip(3 * e - 1, 0, 1), np.clip(3 * e - 2, 0, 1)], -1)
     return np.rint(rgb * 255).astype(np.uint8)
+
+
+# -- hand-over steps -------------------------------------------------------------------------
+# Where two LOD levels meet, a level drawn brighter or paler than its neighbour shows as a step
+# of brightness along the boundary (a staircase where the boundary follows macro-cells). Within
+# one level neighbouring blocks differ by the grass's own texture and the slow change with
+# distance; across a boundary they should differ by no more.
+PURE = 0.75  # a block belongs to a level when this share of its pixels shows that level
+
+
+def level_labels(shaded: np.ndarray, techniques: np.ndarray, colors: list) -> np.ndarray:
+    """Per pixel, the index into `colors` (the technique view's colour of each level) of the
+    level drawing it, or -1 where no grass is (the technique view recolours grass only)."""
+    s, t = to_float(shaded), to_float(techniques)
+    grass = np.abs(s - t).max(axis=-1) > _GRASS_CHANGE
+    ref = np.asarray(colors, np.float32)
+    ref = ref / ref.sum(axis=-1, keepdims=True)
+    chroma = t / np.maximum(t.sum(axis=-1, keepdims=True), 1e-6)
+    nearest = np.argmin(((chroma[..., None, :] - ref) ** 2).sum(axis=-1), axis=-1)
+    return np.where(grass, nearest, -1)
+
+
+def _block_shares(labels: np.ndarray, count: int, block: int) -> np.ndarray:
+    """Per block, the share of its pixels each of `count` levels draws: (rows, columns, count)."""
+    h, w = labels.shape[0] // block * block, labels.shape[1] // block * block
+    tiles = labels[:h, :w].reshape(h // block, block, w // block, block).transpose(0, 2, 1, 3)
+    tiles = tiles.reshape(h // block, w // block, block * block)
+    return np.stack([(tiles == k).mean(axis=-1) for k in range(count)], axis=-1)
+
+
+def _luminance(image: np.ndarray, block: int) -> np.ndarray:
+    rgb = downsample(to_float(image), block)
+    return rgb @ np.array([0.2126, 0.7152, 0.0722], np.float32)
+
+
+def level_steps(
+    shaded: np.ndarray,
+    techniques: np.ndarray,
+    colors: list,
+    reference: np.ndarray | None = None,
+    block: int = BLOCK,
+) -> dict:
+    """Mean brightness step (0 … 1) between neighbouring blocks (right and below) drawn by one
+    and the same level (`inside`: 90 % of each block's grass) and between neighbouring grass
+    blocks where levels meet or hand over (`across`: different levels, or either block drawn
+    by two), their pairs counted, and across / inside. With `reference` (the all-geometry frame), the same across pairs' step
+    there (`reference_across`) and across / that."""
+    shares = _block_shares(level_labels(shaded, techniques, colors), len(colors), block)
+    grass = shares.sum(axis=-1) >= PURE
+    pure = grass & (shares.max(axis=-1) >= 0.9 * shares.sum(axis=-1))
+    lum = _luminance(shaded, block)[: shares.shape[0], : shares.shape[1]]
+    ref = None
+    if reference is not None:
+        ref = _luminance(reference, block)[: shares.shape[0], : shares.shape[1]]
+    inside, across, ref_across = [], [], []
+    for a, b in (((slice(None), slice(None, -1)), (slice(None), slice(1, None))),
+                 ((slice(None, -1), slice(None)), (slice(1, None), slice(None)))):  # fmt: skip
+        # inside: both blocks drawn by one level, the same one; across: both grass, and the
+        # two are drawn by different levels, or one of them by two levels at once (a
+        # hand-over, whose steps show where it follows (macro-)cells)
+        same = pure[a] & pure[b] & (shares[a].argmax(axis=-1) == shares[b].argmax(axis=-1))
+        boundary = grass[a] & grass[b] & ~same
+        boundary &= ~(pure[a] & pure[b]) | (shares[a].argmax(axis=-1) != shares[b].argmax(axis=-1))
+        step = np.abs(lum[a] - lum[b])
+        inside.append(step[same])
+        across.append(step[boundary])
+        if ref is not None:
+            ref_across.append(np.abs(ref[a] - ref[b])[boundary])
+    inside_all, across_all = np.concatenate(inside), np.concatenate(across)
+    out: dict = {"inside_pairs": int(inside_all.size), "across_pairs": int(across_all.size)}
+    out["inside"] = float(inside_all.mean()) if inside_all.size else None
+    out["across"] = float(across_all.mean()) if across_all.size else None
+    # the steps a person sees are the few large ones along a staircase's edges: the 95th
+    # percentile of each set as well
+    out["inside_p95"] = float(np.percentile(inside_all, 95)) if inside_all.size else None
+    out["across_p95"] = float(np.percentile(across_all, 95)) if across_all.size else None
+    out["p95_across_over_inside"] = (
+        None
+        if out["inside_p95"] is None or out["across_p95"] is None
+        else out["across_p95"] / max(out["inside_p95"], 1e-9)
+    )
+    out["across_over_inside"] = (
+        None
+        if not (inside_all.size and across_all.size)
+        else out["across"] / max(out["inside"], 1e-9)
+    )
+    if ref is not None:
+        r = np.concatenate(ref_across)
+        out["reference_across"] = float(r.mean()) if r.size else None
+        out["across_over_reference"] = (
+            None if not (r.size and across_all.size) else out["across"] / max(float(r.mean()), 1e-9)
+        )
+    return out

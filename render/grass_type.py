@@ -10,7 +10,7 @@ import numpy as np
 from core.canopy import Canopy
 from core.draw_list import DrawList
 from core.grid import INSTANCE_DTYPE
-from core.lod import LodConfig
+from core.lod import NO_FADE, LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
 from render.conversion import PatchConverter
@@ -158,6 +158,8 @@ class GrassTypeRenderer:
                 renderer = self.volume(n)
                 renderer.volume_partner = self._volume_partners(n)
             renderer.set_instances(instances)
+            if representation != "geometry":  # blades stand in single cells: their own w
+                renderer.fade = cells.fades.get(key, NO_FADE)
             batches[key] = (renderer, int(instances.size))
         return batches
 

@@ -9,6 +9,7 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
+from core.lod import NO_FADE
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
@@ -57,6 +58,7 @@ class _Batch(InstancedRenderer):
 
 class ImageRenderer:
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
+    fade = NO_FADE  # the level's transitions' distances (core/lod.py fades), set per frame
     density_channel = 0  # the grass type's channel of the density map (render/layer.py)
     technique_color = (0.15, 0.35, 1.0)  # --view techniques (thesis Figs. 7.1-7.6)
     lift = 0.01
@@ -161,6 +163,8 @@ class ImageRenderer:
         p["u_top_mean"].value = tuple(float(v) for v in self.textures.top.mean_color)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
+        if "u_fade" in p:  # the transitions' distances, per blade or sample (_lod.glsl)
+            p["u_fade"].value = self.fade
         p["u_top_spread"].write(spread_levels(self.textures.top.spread))
         p["u_mean_normal"].value = tuple(float(v) for v in self.textures.top.mean_normal)
         p["u_alpha_ref"].value = self.alpha_ref

@@ -11,6 +11,7 @@ import math
 import moderngl
 import numpy as np
 
+from core.lod import NO_FADE
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.shaders import load_program
@@ -28,6 +29,7 @@ _FACES = np.array(
 
 class VolumeRenderer(InstancedRenderer):
     epsilon = 0.05  # LOD crossover window (eq. 5.26)
+    fade = NO_FADE  # the level's transitions' distances (core/lod.py fades), set per frame
     density_channel = 0  # the grass type's channel of the density map (render/layer.py)
     technique_color = (1.0, 0.85, 0.1)  # --view techniques (thesis Figs. 7.1-7.6)
     max_steps = 12
@@ -85,6 +87,8 @@ class VolumeRenderer(InstancedRenderer):
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
+        if "u_fade" in p:  # the transitions' distances, per blade or sample (_lod.glsl)
+            p["u_fade"].value = self.fade
         p["u_side_spread"].write(spread_levels(t.sides.spread))
         p["u_top_spread"].write(spread_levels(t.top.spread))
         p["u_slices"].value = float(self.slices)

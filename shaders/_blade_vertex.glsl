@@ -57,7 +57,7 @@ void main() {
     float density = u_density * in_cell_density * design_density(design_uv(in_config, root));
 #endif
     v_density = density;
-    v_opacity = lod_opacity(in_threshold, density, in_lod);
+    v_opacity = lod_opacity(in_threshold, density, in_lod);  // one cell each: its own w
     if (v_opacity <= 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: the blade vanishes
         v_world = vec3(0.0); v_normal = vec3(0.0, 1.0, 0.0); v_uv = vec2(0.0); v_color = vec3(0.0);

@@ -2,6 +2,22 @@
 // representation of a transition and keeps blades with threshold / density below w, side 1 the
 // far one and keeps the rest; a smoothstep window of half-width u_epsilon blends the crossover.
 uniform float u_epsilon;
+// The transitions' distances (e1, e2) of eq. 5.23 for this level: from the previous level (xy)
+// and to the next (zw); e2 <= e1 where there is none (core/lod.py fades). A cell's (w, side)
+// says whether it lies in a transition, its w taken at its centre. A macro-cell that two
+// levels share in a transition (core/traversal.py _pair_weight) would so hand over as one
+// block, and a row of them as a staircase: in a macro-cell w is weighed instead at the
+// distance d of the sample or texel itself, as the partner level does there. A single cell
+// keeps its own w, which both representations share exactly (each weighs blades at its own
+// sample points, and those differ between a blade's root, a ray's hits and an image texel).
+uniform vec4 u_fade;
+
+vec2 lod_at(vec2 lod, float d, vec2 cells) {
+    vec2 fade = lod.y > 0.5 ? u_fade.xy : u_fade.zw;
+    bool in_transition = lod.y > 0.5 || lod.x <= 1.0;
+    if (!in_transition || fade.y <= fade.x || max(cells.x, cells.y) <= 1.0) return lod;
+    return vec2(1.0 - clamp((d - fade.x) / (fade.y - fade.x), 0.0, 1.0), lod.y);
+}
 
 float lod_opacity(float threshold, float density, vec2 lod) {
     float x = threshold / max(density, 1e-6);

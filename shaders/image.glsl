@@ -26,6 +26,7 @@ out vec3 v_world;
 out vec2 v_design;             // design-map uv
 flat out float v_density;
 flat out vec2 v_lod;
+flat out vec2 v_size;
 flat out vec2 v_mirror;
 flat out vec2 v_origin;
 
@@ -34,6 +35,7 @@ void main() {
     v_design = design_uv(in_config, v_patch);
     v_density = in_cell_density;
     v_lod = in_lod;
+    v_size = in_size;
     v_mirror = in_mirror;
     v_origin = in_origin;
     // the grid's vertices follow the ground (6.4.4; the thesis displaces the four corners)
@@ -74,6 +76,7 @@ in vec3 v_world;
 in vec2 v_design;
 flat in float v_density;
 flat in vec2 v_lod;
+flat in vec2 v_size;
 flat in vec2 v_mirror;
 flat in vec2 v_origin;
 
@@ -134,7 +137,8 @@ void main() {
     vec2 size = vec2(textureSize(u_top_color, 0));
     float lod = max(log2(max(length(duv_x * size), length(duv_y * size))), 0.0);
     // of the blades under the texel, the share kept; alpha-to-coverage draws that share
-    c.a *= lod_share(data.a, level_value(u_top_spread, lod), density, v_lod);
+    c.a *= lod_share(data.a, level_value(u_top_spread, lod), density,
+                     lod_at(v_lod, distance(u_eye.xz, v_world.xz), v_size));
     if (c.a < 0.02) discard;
     // The normal is not mirrored: far away a mirrored macro-cell would flip the small sideways
     // part of the patch's average normal and light hundreds of cells a few per cent brighter

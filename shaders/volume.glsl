@@ -132,7 +132,8 @@ vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l) {
     vec4 c = textureLod(u_top_color, uv, top_lod);
     vec4 data = textureLod(u_top_data, uv, top_lod);
     float density = u_density * v_density * ground_density(design_uv(v_config, g.xz)).y;
-    c.a *= lod_share(data.a, level_value(u_top_spread, top_lod), density, v_lod);
+    c.a *= lod_share(data.a, level_value(u_top_spread, top_lod), density,
+                     lod_at(v_lod, distance(u_eye.xz, v_origin + g.xz), v_size));
     // The layer stands for the blades below it: AO_blade at their mean height, half the
     // layer's (at the layer's own height the DEM's slopes facing the eye, whose rays it
     // catches since it follows the ground, were drawn brighter than the blades: sward quality
@@ -337,7 +338,8 @@ void main() {
         // cover more than half of it: at the hand-over from the blades (whose other half are
         // drawn as geometry) the ground showed between the two (sward quality, README: meadow
         // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
-        float share = lod_share(data.a, side_spread, density, v_lod);
+        float share = lod_share(data.a, side_spread, density,
+                                lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
         c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);

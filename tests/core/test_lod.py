@@ -232,3 +232,35 @@ def test_any_valid_levels_stay_valid_with_any_blade_reach(ends, overlap, reach, 
         assert after.begin >= before.begin
         if before.representation == "geometry" and before.end is not None:
             assert after.end >= before.end
+
+
+def test_fades_give_each_renderer_its_levels_transitions_as_the_cells_weights_use():
+    from core.lod import NO_FADE, fades
+
+    config = LodConfig(
+        (
+            LodLevel("geometry", 0.0, 20.0),
+            LodLevel("volume", 5.0, 80.0, slices=8, macro=32),
+            LodLevel("volume", 50.0, 160.0, slices=2, macro=32),
+            LodLevel("image", 100.0, None, macro=64),
+        )
+    )
+    out = fades(config)
+    assert out[("geometry", 0)] == (0.0, 0.0, 5.0, 20.0)
+    assert out[("volume", 8)] == (5.0, 20.0, 50.0, 80.0)
+    assert out[("volume", 2)] == (50.0, 80.0, 100.0, 160.0)
+    assert out[("image", 0)] == (100.0, 160.0, 0.0, 0.0)
+    # the same w as the cells' own at any distance in a transition (eq. 5.23)
+    d = np.array([60.0, 70.0])
+    ((_, lod),) = [classify(d, config)[2]]
+    e1, e2 = out[("volume", 2)][:2]
+    assert np.allclose(lod[:, 0], weight_near(d, e1, e2))
+    # two levels drawn by one renderer: their cells keep their own weights
+    twice = LodConfig(
+        (
+            LodLevel("volume", 0.0, 40.0, slices=4),
+            LodLevel("image", 30.0, 90.0),
+            LodLevel("volume", 80.0, None, slices=4),
+        )
+    )
+    assert fades(twice)[("volume", 4)] == NO_FADE

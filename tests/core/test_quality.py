@@ -7,6 +7,7 @@ from core.quality import (
     Comparison,
     block_color_difference,
     heat_map,
+    level_steps,
     popping,
     quarter_mask,
     technique_regions,
@@ -92,3 +93,34 @@ def test_heat_map_runs_from_black_to_white():
     assert h[0, 0].tolist() == [0, 0, 0] and h[0, 2].tolist() == [255, 255, 255]
     assert h[0, 1, 0] == 255 and h[0, 1, 2] == 0  # half way: red, some yellow
     assert h[0, 3].tolist() == [255, 255, 255]  # clipped
+
+
+def _two_levels(step_at_boundary: float, blocks: bool):
+    """A grass picture drawn by two levels, the far one (top) in the technique view's second
+    colour; the boundary runs as a staircase of 16-pixel steps (blocks) or straight. The far
+    level is `step_at_boundary` brighter."""
+    h, w = 128, 128
+    shaded = grass(h, w).astype(np.float32)
+    rows = np.arange(h)[:, None]
+    cols = np.arange(w)[None, :]
+    edge = 64 + (16 * ((cols // 16) % 3) if blocks else 0 * cols)
+    far = rows < edge
+    shaded[far] += step_at_boundary
+    shaded = np.clip(shaded, 0, 255).astype(np.uint8)
+    technique = np.where(far[..., None], (255, 240, 110), (255, 215, 25)).astype(np.uint8)
+    return shaded, technique
+
+
+def test_level_steps_see_a_brighter_level_as_a_step_and_not_the_grass_texture():
+    colors = [(1.0, 0.85, 0.1), (1.0, 0.95, 0.45)]
+    even = level_steps(*_two_levels(0.0, blocks=True), colors)
+    stair = level_steps(*_two_levels(25.0, blocks=True), colors)
+    assert even["across_pairs"] > 20 and even["inside_pairs"] > 100
+    assert even["p95_across_over_inside"] < 1.3
+    assert stair["p95_across_over_inside"] > 2.0
+    assert stair["across_over_inside"] > even["across_over_inside"]
+    # against a reference drawn by one level: the same pairs' step there
+    reference, _ = _two_levels(0.0, blocks=True)
+    shaded, technique = _two_levels(25.0, blocks=True)
+    with_ref = level_steps(shaded, technique, colors, reference=reference)
+    assert with_ref["across_over_reference"] > 2.0
