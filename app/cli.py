@@ -267,6 +267,20 @@ def parser() -> argparse.ArgumentParser:
         "estimated instead of drawn (default 120)",
     )
     q.add_argument("--out", type=Path, help="folder for quality.json and the heat maps")
+    q.add_argument(
+        "--sweep",
+        action="store_true",
+        help="every built-in scene at every camera and the meadow with each preset and patch "
+        "extreme: bare blocks, hand-over steps, region colours, the wind far away, each "
+        "against its limit; exit status 1 when one is over (--out: sweep.json and a "
+        "contact sheet)",
+    )
+    q.add_argument(
+        "--case",
+        action="append",
+        metavar="PREFIX",
+        help="with --sweep, only the cases whose name starts so (e.g. football, meadow/path)",
+    )
 
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
@@ -570,6 +584,10 @@ def cmd_profile(args: argparse.Namespace) -> int:
 def cmd_quality(args: argparse.Namespace) -> int:
     from app.quality import quality
 
+    if args.sweep:
+        return _sweep(args)
+    if args.case:
+        raise CliError("--case selects cases of --sweep; give --sweep as well")
     document = _document(args)
     for name in args.camera or []:
         _known_camera(document, name)
@@ -604,6 +622,30 @@ def cmd_quality(args: argparse.Namespace) -> int:
     )
     print(text)
     return 0
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from app.sweep import cases, sweep
+
+    if args.project is not None or args.camera or args.path:
+        raise CliError(
+            "--sweep draws the built-in scenes' cameras: drop --project, --camera, --path"
+        )
+    names = [case.name for case in cases()]
+    for prefix in args.case or []:
+        if not any(name.startswith(prefix) for name in names):
+            raise CliError(f"--case {prefix}: no sweep case starts so; cases: {', '.join(names)}")
+    if args.out is not None:
+        if args.out.exists() and not args.out.is_dir():
+            raise CliError(f"--out {args.out}: not a folder")
+        try:
+            args.out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise CliError(f"cannot make {args.out}: {exc.strerror or exc}") from None
+        _writable(args.out / "sweep.json")
+    text, result = sweep(args.size, args.out, args.case)
+    print(text)
+    return 1 if result["failed"] else 0  # a guard: a check over its limit fails the run
 
 
 def cmd_scenes(_: argparse.Namespace) -> int:

@@ -220,3 +220,25 @@ def level_steps(
             None if not (r.size and across_all.size) else out["across"] / max(float(r.mean()), 1e-9)
         )
     return out
+
+
+def bare_blocks(
+    shaded: np.ndarray, soil_magenta: np.ndarray, techniques: np.ndarray, block: int = BLOCK
+) -> dict:
+    """Where the soil shows through the grass: of a frame, the same frame with the soil under
+    the grass drawn magenta, and the frame in the technique colours, the share of terrain
+    blocks more than half of whose area shows soil. A pixel's soil share is how far it moved
+    towards magenta (blue minus green, 0 … 1); terrain is what the magenta soil or the
+    technique colours change (not the sky, nor the bare ground beyond the grassed cells)."""
+    a, b, t = to_float(shaded), to_float(soil_magenta), to_float(techniques)
+    moved = np.clip((b[..., 2] - b[..., 1]) - (a[..., 2] - a[..., 1]), 0.0, 1.0)
+    terrain = (np.abs(a - b).max(axis=-1) > 0.0) | (np.abs(a - t).max(axis=-1) > _GRASS_CHANGE)
+    h, w = (moved.shape[0] // block) * block, (moved.shape[1] // block) * block
+
+    def blocks(x):
+        return x[:h, :w].reshape(h // block, block, w // block, block).mean(axis=(1, 3))
+
+    soil, land = blocks(moved), blocks(terrain.astype(np.float32))
+    counted = land >= 0.5
+    share = float((soil[counted] > 0.5).mean()) if counted.any() else 0.0
+    return {"bare_blocks": share, "terrain_blocks": int(counted.sum())}

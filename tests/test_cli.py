@@ -270,9 +270,32 @@ def test_quality_estimates_a_reference_beyond_its_budget_and_measures_popping(tm
     assert path["reference_max_change"] > 0
 
 
+def test_quality_sweep_writes_each_case_its_checks_and_a_contact_sheet(tmp_path):
+    r = sward(
+        "quality", "--sweep", "--case", "patch-grid/top", "--case", "football/player",
+        "--size", "160x90", "--out", str(tmp_path),
+    )  # fmt: skip
+    assert r.returncode in (0, 1), r.stderr
+    assert "far-field sweep" in r.stdout and "checks over their limits" in r.stdout
+    data = json.loads((tmp_path / "sweep.json").read_text())
+    rows = {row["case"]: row for row in data["cases"]}
+    assert set(rows) == {"patch-grid/top", "football/player"}
+    # the patch grid's reference is drawn: its regions' colours are compared with it
+    assert rows["patch-grid/top"]["region_colour"]
+    # the football's is not (billions of blade triangles), and its hand-over steps are checked
+    assert "not drawn" in rows["football/player"]["reference"]
+    assert "steps_p95" in rows["football/player"]["checks"]
+    assert (r.returncode == 1) == bool(data["failed"])
+    sheet = np.asarray(Image.open(tmp_path / "sweep.png"))
+    assert sheet.shape[1] == 4 * 80 and sheet.std() > 10
+
+
 @pytest.mark.parametrize(
     ("args", "words"),
     [
+        (["--sweep", "--case", "nowhere"], "--case nowhere: no sweep case"),
+        (["--case", "meadow"], "give --sweep as well"),
+        (["--sweep", "--camera", "default"], "--sweep draws the built-in scenes' cameras"),
         (["--camera", "nowhere"], "unknown camera 'nowhere'"),
         (["--path", "nowhere"], "unknown camera path 'nowhere'"),
         (["--frames", "1", "--path", "orbit"], "--frames 1 out of range"),

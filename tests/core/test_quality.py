@@ -5,6 +5,7 @@ import pytest
 
 from core.quality import (
     Comparison,
+    bare_blocks,
     block_color_difference,
     heat_map,
     level_steps,
@@ -124,3 +125,17 @@ def test_level_steps_see_a_brighter_level_as_a_step_and_not_the_grass_texture():
     shaded, technique = _two_levels(25.0, blocks=True)
     with_ref = level_steps(shaded, technique, colors, reference=reference)
     assert with_ref["across_over_reference"] > 2.0
+
+
+def test_bare_blocks_counts_terrain_whose_soil_shows_and_not_the_sky():
+    h, w = 64, 64
+    shaded = grass(h, w)
+    shaded[:16] = (150, 190, 230)  # sky
+    techniques = shaded.copy()
+    techniques[16:] = (255, 40, 25)  # the grass, recoloured
+    magenta = shaded.copy()
+    magenta[48:, :32] = (230, 20, 220)  # a bare patch: the soil, now magenta, shows
+    out = bare_blocks(shaded, magenta, techniques)
+    assert out["terrain_blocks"] == 48  # 6 of 8 block rows, not the sky's
+    assert out["bare_blocks"] == pytest.approx(8 / 48)
+    assert bare_blocks(shaded, shaded, techniques)["bare_blocks"] == 0.0
