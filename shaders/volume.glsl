@@ -287,6 +287,20 @@ void main() {
         }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
+    // Each crossing stands for the slab of its family around it (a slice holds the blades
+    // between it and its neighbours, thesis 4.2.1), i.e. for the ray's path from half the
+    // way back to the previous plane of that family to half the way on to the next. Only the
+    // part of that path inside the grass layer (0 … height over the ground) meets blades: the
+    // crossing counts that fraction of a slab, read at the middle of that part's heights. A
+    // ray through the layer in less than a slab (a slope facing the eye, a steep view) so
+    // meets the share of blades its path holds; counted only where the crossing point itself
+    // lay inside the layer, it met a whole slab or nothing by where the planes fell, and the
+    // soil showed in rings that follow the slice spacing (landscape valley, football high).
+    // the ray length a crossing stands for: crossings of either family come N (|d.x| + |d.z|)
+    // times per unit of the ray, each counted as 1 / (|d.x| + |d.z|) of a slab (below)
+    float slab = p_inum / max(abs(d.x) + abs(d.z), 0.25);
+    float prev_lambda = 0.0;
+    float prev_y = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
         bool hit_x = w.x < w.y;
@@ -304,15 +318,25 @@ void main() {
         if (h.y < 0.0 || h.y > top || any(lessThan(h.xz, vec2(-u_overrun)))
             || any(greaterThan(h.xz, v_size + u_overrun))) break;
         vec2 gd = ground_density(design_uv(v_config, h.xz));
-        // eqs. 6.16-6.18: shift the lookup by the ground under the hit; outside the grass: none
+        // eqs. 6.16-6.18: shift the lookup by the ground under the hit
         float y = h.y - (gd.x - v_ground.x);
+        // the heights over the ground the crossing's slab of the ray spans (the ground taken
+        // as straight between this crossing and the previous one)
+        float rate = lambda - prev_lambda > 1e-4 ? (y - prev_y) / (lambda - prev_lambda) : d.y;
+        float half_rise = 0.5 * abs(rate) * slab;
+        float lo = y - half_rise, hi = y + half_rise;
+        prev_lambda = lambda;
+        prev_y = y;
         // under the ground the ray is hidden by the ground drawn before: nothing after counts
-        if (y < 0.0) break;
-        reached = lambda;
-        if (y > u_height) {
+        if (hi < 0.0) break;
+        if (y >= 0.0) reached = lambda;
+        if (lo > u_height) {
             if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
             continue;
         }
+        float in_lo = max(lo, 0.0), in_hi = min(hi, u_height);
+        float inside = hi - lo > 1e-5 ? max(in_hi - in_lo, 0.0) / (hi - lo) : 1.0;
+        y = 0.5 * (in_lo + in_hi);
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
         // the wind: read where the bent blades here stood at rest, moved along the slice
@@ -340,7 +364,7 @@ void main() {
         // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
         float share = lod_share(data.a, side_spread, density,
                                 lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
-        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share);
+        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share * inside);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
             if (dot(n, -d) < 0.0) n = -n;
