@@ -65,6 +65,9 @@ class PatchParams:
             ("length_min", "length_max"),
             ("width_min", "width_max"),
             ("tilt_min", "tilt_max"),
+            # the slices and the cuboids hold the patch up to its height: a longer blade would
+            # be drawn cut off there by the volume and image-based grass
+            ("length_max", "patch_height"),
         ):
             if getattr(self, lo) > getattr(self, hi):
                 raise ParameterError(

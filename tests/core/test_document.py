@@ -23,10 +23,12 @@ colour = st.tuples(unit, unit, unit)
 def params(draw) -> PatchParams:
     base = draw(st.sampled_from(list(PRESETS.values())))
     low = draw(st.floats(0.01, 0.5))
+    high = low + draw(st.floats(0.0, 0.5))
     return base.replace(
         blade_count=draw(st.integers(1, 5000)),
         length_min=low,
-        length_max=low + draw(st.floats(0.0, 0.5)),
+        length_max=high,
+        patch_height=max(base.patch_height, high),
         tilt_max=base.tilt_min + draw(st.floats(0.0, 85.0 - base.tilt_min)),
         bending=draw(st.floats(0.0, 0.95)),
         subdivisions=draw(st.integers(1, 16)),

@@ -37,6 +37,13 @@ def test_min_above_max_is_refused():
         PatchParams(length_min=0.5, length_max=0.2)
 
 
+def test_blades_longer_than_the_patch_is_tall_are_refused_with_the_rule():
+    with pytest.raises(ParameterError) as info:
+        PatchParams(length_min=0.25, length_max=0.9, patch_height=0.7)
+    assert "length_max (0.9) must not exceed patch_height (0.7)" in str(info.value)
+    assert PatchParams(length_min=0.25, length_max=0.9, patch_height=0.9).length_max == 0.9
+
+
 def test_bad_colour_and_unknown_name():
     with pytest.raises(ParameterError, match="tip_color"):
         PatchParams(tip_color=(0.2, 1.4, 0.1))
