@@ -38,7 +38,7 @@ EXTREMES: dict[str, dict] = {
     "upright": {"tilt_min": 0.0, "tilt_max": 0.0},
     "long": {"length_min": 0.5, "length_max": 0.9, "patch_height": 0.95},
     "wide": {"width_min": 0.04, "width_max": 0.06},
-    "dense": {"blade_count": 8000},
+    "dense": {"blade_count": 5000},
     "sparse": {"blade_count": 400},
 }
 LIMITS = {
