@@ -99,6 +99,19 @@ def hills(width: int, seed: int = 0, period: int = 3) -> np.ndarray:
     return ((n - n.min()) / max(float(np.ptp(n)), 1e-9)).astype(np.float32)
 
 
+def ridged_hills(size: int, seed: int = 3) -> np.ndarray:
+    """A stand-in for a real digital elevation model, heights 0 … 1: ridged, eroded-looking
+    hills (1 − |noise| makes sharp crests where the noise crosses zero, over broad valleys)."""
+    from core.noise import fractal_noise
+
+    c = (np.arange(size) + 0.5) / size
+    u, v = np.meshgrid(c, c, indexing="xy")
+    crest = 1.0 - np.abs(fractal_noise(u, v, period=3, seed=seed, octaves=4))
+    broad = fractal_noise(u, v, period=2, seed=seed + 1, octaves=2)
+    h = 0.7 * crest**2 + 0.3 * broad
+    return (h - h.min()) / max(float(np.ptp(h)), 1e-9)
+
+
 # -- the ground mesh under the grass ---------------------------------------------------------
 # The ground is drawn as a triangle grid whose vertices sample the height map; between them
 # its triangles are chords of the bilinear surface, and in hollows the chords lie above it and

@@ -14,17 +14,7 @@ import argparse
 import numpy as np
 from PIL import Image
 
-from core.noise import fractal_noise
-
-
-def ridged(size: int, seed: int) -> np.ndarray:
-    """Heights 0 … 1: 1 − |noise| makes crests where the noise crosses zero."""
-    c = (np.arange(size) + 0.5) / size
-    u, v = np.meshgrid(c, c, indexing="xy")
-    crest = 1.0 - np.abs(fractal_noise(u, v, period=3, seed=seed, octaves=4))
-    broad = fractal_noise(u, v, period=2, seed=seed + 1, octaves=2)
-    h = 0.7 * crest**2 + 0.3 * broad
-    return (h - h.min()) / max(float(np.ptp(h)), 1e-9)
+from core.heights import ridged_hills
 
 
 def main() -> None:
@@ -33,7 +23,7 @@ def main() -> None:
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--seed", type=int, default=3)
     args = parser.parse_args()
-    heights = np.rint(ridged(args.size, args.seed) * 65535).astype(np.uint16)
+    heights = np.rint(ridged_hills(args.size, args.seed) * 65535).astype(np.uint16)
     Image.fromarray(heights).save(args.out)  # 16-bit greyscale (mode I;16)
     print(f"wrote {args.out} ({args.size} × {args.size}, 16-bit)")
 
