@@ -252,10 +252,13 @@ def fades(config: LodConfig) -> dict[tuple[str, int], tuple[float, float, float,
     seen: set[tuple[str, int]] = set()
     for i, level in enumerate(levels):
         key = level.key
-        before = (level.begin, levels[i - 1].end) if i > 0 else NO_FADE[:2]
-        after = (levels[i + 1].begin, level.end) if i + 1 < len(levels) else NO_FADE[:2]
-        fade = (float(before[0]), float(before[1]), float(after[0]), float(after[1]))
-        out[key] = NO_FADE if key in seen else fade
+        fade = list(NO_FADE)
+        previous_end = levels[i - 1].end if i > 0 else None
+        if previous_end is not None:  # only the last level runs to the horizon
+            fade[0:2] = level.begin, previous_end
+        if i + 1 < len(levels) and level.end is not None:
+            fade[2:4] = levels[i + 1].begin, level.end
+        out[key] = NO_FADE if key in seen else (fade[0], fade[1], fade[2], fade[3])
         seen.add(key)
     return out
 

@@ -152,8 +152,8 @@ def level_labels(shaded: np.ndarray, techniques: np.ndarray, colors: list) -> np
 def _block_shares(labels: np.ndarray, count: int, block: int) -> np.ndarray:
     """Per block, the share of its pixels each of `count` levels draws: (rows, columns, count)."""
     h, w = labels.shape[0] // block * block, labels.shape[1] // block * block
-    tiles = labels[:h, :w].reshape(h // block, block, w // block, block).transpose(0, 2, 1, 3)
-    tiles = tiles.reshape(h // block, w // block, block * block)
+    grid = labels[:h, :w].reshape(h // block, block, w // block, block).transpose(0, 2, 1, 3)
+    tiles = grid.reshape(h // block, w // block, block * block)
     return np.stack([(tiles == k).mean(axis=-1) for k in range(count)], axis=-1)
 
 
