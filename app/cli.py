@@ -596,14 +596,7 @@ def cmd_quality(args: argparse.Namespace) -> int:
         raise CliError(f"--frames {args.frames} out of range; allowed 2 … 1000")
     if not args.budget > 0:
         raise CliError(f"--budget {args.budget:g} out of range; give seconds above 0")
-    if args.out is not None:
-        if args.out.exists() and not args.out.is_dir():
-            raise CliError(f"--out {args.out}: not a folder")
-        try:
-            args.out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise CliError(f"cannot make {args.out}: {exc.strerror or exc}") from None
-        _writable(args.out / "quality.json")
+    _out_folder(args.out, "quality.json")
     cameras = args.camera or ([] if args.path else [document.default_camera])
     if not (math.isfinite(args.time_step) and 0.0 <= args.time_step <= 3600.0):
         raise CliError(f"--time-step {args.time_step:g} out of range; 0 … 3600 seconds")
@@ -624,6 +617,20 @@ def cmd_quality(args: argparse.Namespace) -> int:
     return 0
 
 
+def _out_folder(out: Path | None, first: str) -> None:
+    """Make the --out folder of a command that writes several files (none: nothing), and check
+    that its `first` file can be written there."""
+    if out is None:
+        return
+    if out.exists() and not out.is_dir():
+        raise CliError(f"--out {out}: not a folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CliError(f"cannot make {out}: {exc.strerror or exc}") from None
+    _writable(out / first)
+
+
 def _sweep(args: argparse.Namespace) -> int:
     from app.sweep import cases, sweep
 
@@ -635,14 +642,7 @@ def _sweep(args: argparse.Namespace) -> int:
     for prefix in args.case or []:
         if not any(name.startswith(prefix) for name in names):
             raise CliError(f"--case {prefix}: no sweep case starts so; cases: {', '.join(names)}")
-    if args.out is not None:
-        if args.out.exists() and not args.out.is_dir():
-            raise CliError(f"--out {args.out}: not a folder")
-        try:
-            args.out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise CliError(f"cannot make {args.out}: {exc.strerror or exc}") from None
-        _writable(args.out / "sweep.json")
+    _out_folder(args.out, "sweep.json")
     text, result = sweep(args.size, args.out, args.case)
     print(text)
     return 1 if result["failed"] else 0  # a guard: a check over its limit fails the run
