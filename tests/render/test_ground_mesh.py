@@ -48,3 +48,24 @@ def test_sunk_ground_mesh_lets_the_grass_in_hollows_show(headless, monkeypatch):
     sunk = bare_share(headless, monkeypatch, sink=True)
     assert chords > 0.02  # the case shows the defect when the mesh is not sunk
     assert sunk < 0.25 * chords
+
+
+def test_a_height_stroke_redoes_the_sink_of_the_rows_it_reaches(ctx):
+    from core.design_maps import DesignMaps
+    from core.heights import mesh_sink, mesh_size
+    from render.design_maps import DesignMapTextures
+
+    maps = DesignMaps(48, 48)
+    maps.write("height", 0, 0, hills(48, seed=4))
+    textures = DesignMapTextures(ctx, maps)
+    try:
+        sink, quads = textures.mesh_sink()
+        assert quads == mesh_size((48, 48))
+        # a stroke: a ridge across part of the map
+        maps.write("height", 10, 20, np.full((4, 20), 1.0, np.float32))
+        textures.use()  # the next frame uploads what changed
+        drawn = np.frombuffer(sink.read(), np.float32).reshape(quads[1] + 1, quads[0] + 1)
+        expected, _ = mesh_sink(maps.layer("height")[..., 0], quads)
+        assert np.array_equal(drawn, expected)
+    finally:
+        textures.release()
