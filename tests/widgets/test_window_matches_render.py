@@ -14,6 +14,24 @@ from core.quality import technique_regions
 from tests.widgets.conftest import grab
 
 pytestmark = pytest.mark.gui
+# the technique view's colours (thesis Figs. 7.1-7.6): geometry red, volume yellows (deeper or
+# lighter with fewer slices), image-based blue; the window's process imports no GL module
+TECHNIQUE_COLOURS = {
+    "geometry": [(1.0, 0.15, 0.1)],
+    "volume": [(1.0, 0.85, 0.1), (0.95, 0.62, 0.05), (1.0, 0.97, 0.38)],
+    "image": [(0.15, 0.35, 1.0)],
+}
+
+
+def render(project, size, out, *extra) -> np.ndarray:
+    """`sward render` of the project at the bookmarked view, as (h, w, 3) uint8."""
+    r = subprocess.run(
+        [sys.executable, "-m", "app.cli", "render", "--project", str(project),
+         "--camera", "after edits", "--size", f"{size[0]}x{size[1]}", "--out", str(out), *extra],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    return np.asarray(Image.open(out).convert("RGB"))
 
 
 def test_the_window_after_edits_draws_what_sward_render_draws_of_the_saved_project(
@@ -35,28 +53,10 @@ def test_the_window_after_edits_draws_what_sward_render_draws_of_the_saved_proje
     assert window.projects.save_as(path)
 
     h, w = shown.shape[:2]
-    out = tmp_path / "render.png"
-    r = subprocess.run(
-        [sys.executable, "-m", "app.cli", "render", "--project", str(path),
-         "--camera", "after edits", "--size", f"{w}x{h}", "--out", str(out)],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
-    assert r.returncode == 0, r.stderr
-    rendered = np.asarray(Image.open(out).convert("RGB"))
+    rendered = render(path, (w, h), tmp_path / "render.png")
     # the view shows every representation, each with the edits
-    r = subprocess.run(
-        [sys.executable, "-m", "app.cli", "render", "--project", str(path),
-         "--camera", "after edits", "--size", f"{w}x{h}", "--view", "techniques",
-         "--out", str(tmp_path / "techniques.png")],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
-    assert r.returncode == 0, r.stderr
-    from render.grass_type import technique_colors
-
-    shares = technique_regions(
-        rendered, np.asarray(Image.open(tmp_path / "techniques.png").convert("RGB")),
-        technique_colors(),
-    )  # fmt: skip
+    techniques = render(path, (w, h), tmp_path / "techniques.png", "--view", "techniques")
+    shares = technique_regions(rendered, techniques, TECHNIQUE_COLOURS)
     assert all(shares[name].mean() > 0.02 for name in ("geometry", "volume", "image")), {
         name: float(mask.mean()) for name, mask in shares.items()
     }
