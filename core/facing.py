@@ -80,6 +80,54 @@ def facing_lambert(
     return table.reshape(elevations, azimuths).astype(np.float32)
 
 
+# -- the wind's bend ---------------------------------------------------------------------------
+# The wind bends the blades and their normals turn with their curves (core/wind.py
+# bend_vertices, shaders/_blade_vertex.glsl): a gust changes the blades' light, and a far
+# representation shows it through these coefficients of L as a function of the lean λ (the tip
+# displacement, a fraction of a blade's length): L(e, λ) ≈ L + G · λ + ½ λᵀ H λ, from central
+# differences of the table of the patch bent by ±LEAN_STEP along x, z and the diagonals. The
+# second order matters: a lean tilts further the blades that lean another way at rest, whichever
+# way it blows, and the light's change is as much quadratic in λ as linear.
+LEAN_STEP = 0.3  # the shaders keep λ within ±LEAN_STEP per component: interpolation
+BEND_SAMPLE = 6000  # the bent tables' normals (nine tables on every patch or light change)
+
+
+def bend_coefficients(
+    vertices: np.ndarray,
+    light_dir: np.ndarray,
+    translucency: float,
+    canopy: Canopy | None = None,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    step: float = LEAN_STEP,
+) -> np.ndarray:
+    """(elevations, azimuths, 5) float32: G_x, G_z, H_xx, H_xz, H_zz (see above) of the
+    patch's vertices (core/patch.py VERTEX_DTYPE); with `canopy`, each vertex seen through the
+    blades above its bent height (facing_lambert's `seen`)."""
+    from core.wind import bend_vertices
+
+    pick = np.linspace(0, len(vertices) - 1, min(len(vertices), BEND_SAMPLE)).astype(np.int64)
+    v = vertices[pick]
+
+    def table(x: float, z: float) -> np.ndarray:
+        positions, normals = bend_vertices(v, np.array([x, z]) * step)
+        seen = None if canopy is None else (positions[:, 1], canopy)
+        return facing_lambert(normals, light_dir, translucency, azimuths, elevations, seen)
+
+    rest = table(0.0, 0.0)
+    xp, xm, zp, zm = table(1, 0), table(-1, 0), table(0, 1), table(0, -1)
+    diagonal = table(1, 1) - table(1, -1) - table(-1, 1) + table(-1, -1)
+    h2 = step * step
+    out = [
+        (xp - xm) / (2.0 * step),
+        (zp - zm) / (2.0 * step),
+        (xp - 2.0 * rest + xm) / h2,
+        diagonal / (4.0 * h2),
+        (zp - 2.0 * rest + zm) / h2,
+    ]
+    return np.stack(out, axis=-1).astype(np.float32)
+
+
 # -- upright blades on sloping ground ---------------------------------------------------------
 # A blade stands upright wherever it grows (thesis eq. 6.13: the whole blade rises by its
 # root's ground), so on a slope the parts of it that lean downhill stand higher over the ground

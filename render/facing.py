@@ -1,6 +1,8 @@
 """The facing-lambert table of one grass type on the GPU (core/facing.py): a small float
 texture over the azimuth and elevation of the direction to the viewer, rebuilt when the patch or
-the light changes. The volume and image-based shaders light with it (shaders/_lighting.glsl)."""
+the light changes. The volume and image-based shaders light with it (shaders/_lighting.glsl).
+Its lower half holds L, G_x and G_z, its upper half H_xx, H_xz and H_zz: how the light changes
+as the wind bends the blades (core/facing.py bend_coefficients)."""
 
 from __future__ import annotations
 
@@ -12,7 +14,15 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
-from core.facing import ACROSS, AZIMUTHS, ELEVATIONS, SLOPES, facing_lambert, slope_tables
+from core.facing import (
+    ACROSS,
+    AZIMUTHS,
+    ELEVATIONS,
+    SLOPES,
+    bend_coefficients,
+    facing_lambert,
+    slope_tables,
+)
 from core.lighting import Lighting
 from core.patch import GrassPatch
 
@@ -59,34 +69,40 @@ class FacingTable:
         self.ctx = ctx
         self._patch = patch
         self._canopy = canopy
-        self.texture = ctx.texture((AZIMUTHS, ELEVATIONS), 1, dtype="f4")
+        self.texture = ctx.texture((AZIMUTHS, 2 * ELEVATIONS), 3, dtype="f4")
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = True  # azimuth wraps
         self.texture.repeat_y = False
-        self._patch_used: GrassPatch | None = None  # the patch and light the table is of
-        self._light_used: tuple | None = None
-        self._canopy_used: Canopy | None = None
+        self._used: tuple | None = None  # the patch, light, canopy and bend the table is of
 
-    def table(self, lighting: Lighting) -> np.ndarray | None:
+    def table(self, lighting: Lighting, bend: bool = True) -> np.ndarray | None:
+        """(2 · ELEVATIONS, AZIMUTHS, 3): the texture's rows; the bend coefficients zero
+        unless `bend`."""
         patch = self._patch()
         if patch is None:
             return None
         canopy = self._canopy() if self._canopy is not None else None
-        seen = None if canopy is None else (patch.vertices["position"][:, 1], canopy)
-        return facing_lambert(
-            patch.vertices["normal"], lighting.sun_direction, lighting.translucency, seen=seen
-        )
+        v, light, through = patch.vertices, lighting.sun_direction, lighting.translucency
+        seen = None if canopy is None else (v["position"][:, 1], canopy)
+        rest = facing_lambert(v["normal"], light, through, seen=seen)
+        if bend:
+            coefficients = bend_coefficients(v, light, through, canopy)
+        else:
+            coefficients = np.zeros((*rest.shape, 5), np.float32)
+        return np.concatenate([np.dstack([rest, coefficients[..., :2]]), coefficients[..., 2:]])
 
-    def use(self, lighting: Lighting, unit: int = FACING_UNIT) -> None:
+    def use(self, lighting: Lighting, wind: bool = False, unit: int = FACING_UNIT) -> None:
+        """Bind the table of the grass type's patch and this light; `wind`: with the bend
+        coefficients, which still air does not read (they cost twice the rest)."""
         patch = self._patch()
-        light = (*lighting.sun_direction, lighting.translucency)
         canopy = self._canopy() if self._canopy is not None else None
-        if patch is not None and (
-            patch is not self._patch_used or light != self._light_used
-            or canopy is not self._canopy_used
-        ):  # fmt: skip
-            self.texture.write(np.ascontiguousarray(self.table(lighting)).tobytes())
-            self._patch_used, self._light_used, self._canopy_used = patch, light, canopy
+        light = (*lighting.sun_direction, lighting.translucency)
+        if patch is not None:
+            used = self._used
+            same = used is not None and used[0] is patch and used[1] == light and used[2] is canopy
+            if not same or (wind and not used[3]):
+                self.texture.write(np.ascontiguousarray(self.table(lighting, wind)).tobytes())
+                self._used = (patch, light, canopy, wind)
         self.texture.use(unit)
 
     def release(self) -> None:

@@ -144,7 +144,7 @@ class ImageRenderer:
         p = self.program
         frame.apply(p, self.technique_color)
         if self.facing is not None:
-            self.facing.use(frame.lighting)
+            self.facing.use(frame.lighting, frame.wind.enabled)
             p["u_facing"].value = FACING_UNIT
         bind_slopes(p, self.slope, frame.lighting)
         p["u_density_channel"].value = self.density_channel

@@ -104,7 +104,7 @@ class VolumeRenderer(InstancedRenderer):
         # how short averaging makes a normal at most (shaders/volume.glsl blends by it)
         p["u_side_mean_length"].value = min(float(np.linalg.norm(t.sides.mean_normal)), 0.99)
         if self.facing is not None:
-            self.facing.use(frame.lighting)
+            self.facing.use(frame.lighting, frame.wind.enabled)
             p["u_facing"].value = FACING_UNIT
         bind_slopes(p, self.slope, frame.lighting)
         for unit, (name, tex) in enumerate(

@@ -23,14 +23,38 @@ float lambert_through(vec3 n) {
 }
 
 // The mean diffuse factor of the grass type's blades seen from the direction to_eye (render/
-// facing.py, core/facing.py): what a slice far away must show to light like its blades.
+// facing.py, core/facing.py): what a slice far away must show to light like its blades; and how
+// it changes as the wind bends them by the lean λ: L + G · λ + ½ λᵀ H λ (core/facing.py
+// bend_coefficients; the table's rows 0 … 7 hold L, G_x, G_z, its rows 8 … 15 H_xx, H_xz, H_zz).
 uniform sampler2D u_facing;
+const float FACING_ROWS = 8.0;  // core/facing.py ELEVATIONS
+const float LEAN_STEP = 0.3;    // core/facing.py LEAN_STEP: the leans the coefficients span
 
-float facing_lambert(vec3 to_eye) {
+struct Facing { float l; vec2 g; vec3 h; };
+
+vec2 facing_uv(vec3 to_eye) {
     vec3 e = normalize(to_eye);
     float azimuth = atan(e.x, e.z) * 0.15915494;  // 0 = +z, turning towards +x, in turns
     float elevation = asin(clamp(e.y, 0.0, 1.0)) * 0.63661977;  // 0 … 1 over 0 … 90 degrees
-    return textureLod(u_facing, vec2(azimuth, elevation), 0.0).r;
+    return vec2(azimuth, clamp(elevation * FACING_ROWS, 0.5, FACING_ROWS - 0.5) / (2.0 * FACING_ROWS));
+}
+
+float facing_lambert(vec3 to_eye) {
+    return textureLod(u_facing, facing_uv(to_eye), 0.0).r;
+}
+
+Facing facing_entry(vec3 to_eye) {
+    vec2 uv = facing_uv(to_eye);
+    vec3 a = textureLod(u_facing, uv, 0.0).rgb;
+    vec3 b = textureLod(u_facing, uv + vec2(0.0, 0.5), 0.0).rgb;
+    return Facing(a.r, a.gb, b);
+}
+
+// the entry's diffuse factor with the blades bent by the wind's lean (_wind.glsl wind_lean)
+float facing_leaned(Facing f, vec2 lean) {
+    vec2 x = clamp(lean, -LEAN_STEP, LEAN_STEP);
+    return max(f.l + dot(f.g, x) + 0.5 * (f.h.x * x.x * x.x + 2.0 * f.h.y * x.x * x.y
+                                          + f.h.z * x.y * x.y), 0.0);
 }
 
 // Upright blades on sloping ground against the slices, which are sheared with it (core/

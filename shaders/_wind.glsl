@@ -92,3 +92,11 @@ vec3 wind_unbend(WindShear s, float y) {
     float b = min(y, s.top);
     return vec3(b * s.stretch, (s.lin + s.quad * b) * b);
 }
+
+// The direction of that blade's bent curve at bent height y, d/dy of (shift, y): the rest curve
+// is upright. A far representation's blades at height y turn with it from the vertical, as a
+// blade's normals turn with its curve (_blade_vertex.glsl): the light of a gust.
+vec3 wind_axis(WindShear s, float y) {
+    vec2 slope = s.lin + 2.0 * s.quad * clamp(y, 0.0, s.top);
+    return normalize(vec3(slope.x, 1.0, slope.y));
+}

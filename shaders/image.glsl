@@ -91,8 +91,9 @@ void main() {
     // from (Habel's sheared lookup, _wind.glsl)
     vec2 at = v_patch;
     vec2 lean = wind_lean(v_origin + v_patch);
+    WindShear shear = wind_still(u_grass_height);
     if (u_wind_on) {
-        WindShear shear = wind_shear(lean, u_grass_height);
+        shear = wind_shear(lean, u_grass_height);
         at -= wind_unbend(shear, u_canopy * shear.top).yz;
     }
     vec2 p = cell_mirror(v_origin + floor(at), v_mirror) * at;
@@ -156,8 +157,14 @@ void main() {
     // the slice's own normal varies about the patch's mean normal; on a slope, as the upright
     // blades there differ from those on flat ground at this elevation over the ground
     // (slope_ratio_flat: the DEM's tall grass far away was 10/255 too bright without it).
-    float detail = lambert_through(n) / max(lambert_through(u_mean_normal), 0.05);
-    float l = facing_lambert(to_eye) * clamp(detail, 0.25, 2.0) * slope_ratio_flat(to_eye, theta, across);
+    // Under the wind the blades' light follows their bend (facing_leaned), and the texel's
+    // normal turns with their curve at the height the top view shows (wind_axis).
+    vec3 axis = wind_axis(shear, u_canopy * shear.top);
+    const vec3 UP = vec3(0.0, 1.0, 0.0);
+    float detail = lambert_through(turn(n, UP, axis))
+                 / max(lambert_through(turn(u_mean_normal, UP, axis)), 0.05);
+    float l = facing_leaned(facing_entry(to_eye), lean) * clamp(detail, 0.25, 2.0)
+            * slope_ratio_flat(to_eye, theta, across);
     // AO_blade (eq. 6.11) of what the view meets of the blades
     float shade = mix(mix(u_level_shade[i], u_level_shade[j], row - float(i)),
                       mix(u_over_shade[i], u_over_shade[j], row - float(i)), under);

@@ -205,7 +205,8 @@ void main() {
     float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
 
     float side_spread = level_value(u_side_spread, lod);
-    float facing = facing_lambert(-d);  // the blades' mean diffuse factor seen along the ray
+    // the blades' mean diffuse factor seen along the ray, as bent by the wind here
+    float facing = u_wind_on ? facing_leaned(facing_entry(-d), lean) : facing_lambert(-d);
     // The slices are sheared with the ground, the blades stand upright on it: on a slope the
     // light differs by the ratio of the two (core/facing.py slope_tables, its first layer), at
     // the ray's elevation over the ground where it enters (tan θ = (u · n) / (n_y |u_xz|), as
@@ -376,6 +377,8 @@ void main() {
             // of the family's mean normal.
             float len = length(n);
             float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
+            // under the wind the texel's normal turns with the blades' curve here (wind_axis)
+            if (u_wind_on) n = turn(n, vec3(0.0, 1.0, 0.0), wind_axis(shear, y));
             float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
             gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = lambda;

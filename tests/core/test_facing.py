@@ -1,6 +1,7 @@
 """The blades' mean diffuse factor by view direction (core/facing.py)."""
 
 import numpy as np
+import pytest
 
 from core.facing import directions, facing_lambert
 
@@ -131,3 +132,29 @@ def test_upright_blades_on_ground_rising_across_the_view_show_the_parts_that_lea
         assert across[ACROSS // 2] == 1.0
         assert (across[ACROSS // 2 + 1 :] < 0.97).all(), (layer, across)  # rising to the right
         assert (across[: ACROSS // 2] > 1.03).all(), (layer, across)  # falling to the right
+
+
+@pytest.mark.parametrize("preset", [None, "short-cut turf", "long thin meadow grass"])
+def test_the_bend_coefficients_light_the_blades_as_the_wind_bends_them(preset):
+    """L + G · λ + ½ λᵀ H λ against the table of the patch bent by λ (core/wind.py, as the
+    blades' shader bends it), within the leans the coefficients span; the lean changes the
+    light several times more than the coefficients miss."""
+    from core.facing import bend_coefficients
+    from core.params import PRESETS, PatchParams
+    from core.patch import generate_patch
+    from core.wind import bend_vertices
+
+    params = PatchParams(seed=4) if preset is None else PRESETS[preset].replace(seed=4)
+    v = generate_patch(params).vertices
+    light = np.array([0.5, 0.64, -0.58]) / np.linalg.norm([0.5, 0.64, -0.58])
+    rest = facing_lambert(v["normal"], light, 0.35)
+    c = bend_coefficients(v, light, 0.35)
+    for lean in ([0.2, 0.0], [0.0, -0.25], [0.3, 0.17], [-0.2, 0.25]):
+        x, z = lean
+        predicted = rest + x * c[..., 0] + z * c[..., 1]
+        predicted += 0.5 * (c[..., 2] * x * x + 2.0 * c[..., 3] * x * z + c[..., 4] * z * z)
+        bent = facing_lambert(bend_vertices(v, np.array(lean))[1], light, 0.35)
+        rows = slice(0, 6)  # the views of far grass: up to 62° (the top rows see blades end-on)
+        change = np.abs(bent - rest)[rows].max()
+        assert change > 0.02, f"{lean}: the bend changes the light by {change:.3f} only"
+        assert np.abs(predicted - bent)[rows].max() < 0.35 * change, lean

@@ -122,3 +122,27 @@ def test_while_the_wind_blows_the_blades_reach_farther(headless):
     assert still > 1000
     assert blades(Wind(enabled=True, blade_reach=1.0)) == pytest.approx(still, rel=0.05)
     assert blades(Wind(enabled=True, blade_reach=1.5)) > 1.2 * still
+
+
+def test_a_gust_lights_the_far_grass_as_it_lights_the_blades(headless):
+    """The patch-grid seen by the image-based grass alone and by the blades alone, a wide gust
+    blowing one way and then the other: each way changes the light of both alike (core/facing.py
+    bend_coefficients), the part that turns with the wind's way in the same direction and by a
+    like amount."""
+    changes = {}
+    for mode in ("geometry", "image"):
+        frames = []
+        for direction in (None, 0.0, 180.0):
+            doc = get_scene("patch-grid").document()
+            doc.wind = Wind(
+                enabled=direction is not None, direction=direction or 0.0, gust_strength=0.3,
+                gust_scale=200.0, turbulence_strength=0.0,
+            )  # fmt: skip
+            frame = headless(doc, mode=mode).render(doc.camera("default"), SIZE, measure=False)[0]
+            frames.append(frame.astype(float) / 255.0)
+        still, along, against = frames
+        grass = still[..., 1] > still[..., 2] + 0.05
+        assert grass.mean() > 0.3
+        changes[mode] = float(((along - still) - (against - still))[grass].mean()) / 2.0
+    assert abs(changes["geometry"]) > 0.001, changes  # the blades' light turns with the wind
+    assert 0.5 < changes["image"] / changes["geometry"] < 2.0, changes
