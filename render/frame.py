@@ -397,7 +397,7 @@ class FramePipeline:
         drawn = []
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
             tu = time.perf_counter()
-            batches = grass.upload(selected)
+            batches = grass.upload(selected, frame.eye)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
             for (representation, slices), (_renderer, count) in batches.items():
@@ -410,12 +410,30 @@ class FramePipeline:
                     stats.triangles += triangles
         # The volume blends its partly covered fragments over what is already drawn, so it goes
         # last: behind its far edge the image-based grass must be there already, not the soil.
+        # Its cuboids are blended far to near (render/grass_type.py sorts them), each ray
+        # counting the grass in its own cuboid, and write no depth that would hide another's
+        # fragments behind them (a faint veil hid the rest of the grass along its ray: bare
+        # bands where levels hand over, rings on hills). A grass type that stands over another
+        # is drawn in two bands of height: the part among the shorter grass before it, the part
+        # above it after, over it.
         order = {"geometry": 0, "image": 1, "volume": 2}
         self._stack_layers()
-        passes = [(key, item) for batches in drawn for key, item in batches.items()]
-        for (representation, _), (renderer, count) in sorted(
-            passes, key=lambda p: (order[p[0][0]], -p[0][1])
-        ):
+        INF = float("inf")
+        passes = []
+        for index, batches in enumerate(drawn):
+            beneath = self.grass_types[index].beneath_height
+            for (representation, slices), item in batches.items():
+                if representation != "volume":
+                    passes.append(((order[representation], 0, -slices), representation, item, None))
+                elif beneath is None:
+                    passes.append(((2, 1, -slices), representation, item, (0.0, INF, 1.0)))
+                else:
+                    passes.append(((2, 0, -slices), representation, item, (0.0, beneath, 0.5)))
+                    passes.append(((2, 2, -slices), representation, item, (0.0, beneath, 0.5)))
+                    passes.append(((2, 3, -slices), representation, item, (beneath, INF, 1.0)))
+        for _, representation, (renderer, count), band in sorted(passes, key=lambda p: p[0]):
+            if band is not None:
+                renderer.band = band
             if count:
                 if self._abort is not None and self._abort():
                     raise FrameAborted
@@ -442,6 +460,9 @@ class FramePipeline:
             grass.image.under_channels = tuple(other.density_channel for other in under)
             tallest = max(under, key=lambda other: other.image.textures.height, default=None)
             grass.image.under = tallest.image.textures.canopy if tallest is not None else None
+            grass.beneath_height = (
+                float(tallest.image.textures.height) if tallest is not None else None
+            )
             for volume in grass.volumes.values():
                 volume.floor = None if under else VolumeRenderer.floor
 

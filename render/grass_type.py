@@ -57,6 +57,8 @@ class GrassTypeRenderer:
         self.slope = SlopeTable(ctx, lambda: self.patch, self._canopy)
         self.image.slope = self.slope
         self.lod = LodConfig()
+        # the slices' height of the tallest grass type beneath this one (render/frame.py), or None
+        self.beneath_height: float | None = None
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
         self._instances = np.zeros(0, INSTANCE_DTYPE)
@@ -147,32 +149,26 @@ class GrassTypeRenderer:
             self.set_slice_textures(textures, patch, sp.replace(slices=n), sp.slices)
 
     # -- drawing -----------------------------------------------------------------------------
-    def upload(self, cells: DrawList) -> dict[tuple[str, int], tuple[object, int]]:
+    def upload(
+        self, cells: DrawList, eye: np.ndarray | None = None
+    ) -> dict[tuple[str, int], tuple[object, int]]:
         """Hand each renderer its cells (one instance upload each): (representation, slices)
-        -> (renderer, instance count)."""
+        -> (renderer, instance count). `eye`: the volume's cells go far to near from it."""
         batches = {}
         for key, instances in cells.batches.items():
             representation, n = key
             renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
             if renderer is None:
                 renderer = self.volume(n)
-                renderer.volume_partner = self._volume_partners(n)
+                if eye is not None and instances.size:  # far to near: blended in that order
+                    centre = instances["origin"] + 0.5 * instances["size"]
+                    far = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
+                    instances = instances[np.argsort(-far, kind="stable")]
             renderer.set_instances(instances)
             if representation != "geometry":  # blades stand in single cells: their own w
                 renderer.fade = cells.fades.get(key, NO_FADE)
             batches[key] = (renderer, int(instances.size))
         return batches
-
-    def _volume_partners(self, slices: int) -> tuple[bool, bool]:
-        """Whether a volume level of `slices` slices has a volume level just before it and
-        just after it in distance."""
-        levels = self.lod.levels
-        before = after = False
-        for i, level in enumerate(levels):
-            if level.representation == "volume" and level.slices == slices:
-                before |= i > 0 and levels[i - 1].representation == "volume"
-                after |= i + 1 < len(levels) and levels[i + 1].representation == "volume"
-        return before, after
 
     def release(self) -> None:
         for renderer in self.renderers:

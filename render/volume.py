@@ -41,7 +41,9 @@ class VolumeRenderer(InstancedRenderer):
     # None: no layer, for a grass type standing over a shorter one (render/frame.py), whose
     # own volume is what such a ray meets below.
     floor: float | None = 0.5
-    overrun = 1.0  # cells a ray may continue past its own cuboid (see shaders/volume.glsl)
+    # the heights over the ground a pass counts (render/frame.py draws a grass type that
+    # stands over another in two bands)
+    band = (0.0, float("inf"), 1.0)
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -57,9 +59,6 @@ class VolumeRenderer(InstancedRenderer):
         self.density = 1.0
         self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
         self.slope: SlopeTable | None = None  # the same
-        # whether the level before / after this one in distance is a volume as well (set by
-        # the grass type from its LOD levels): their transitions composite two veils
-        self.volume_partner = (False, False)
 
     def set_slices(self, textures: SliceTextures | None, owned: bool = True) -> None:
         """The slices to draw. With owned=False the caller keeps and releases them."""
@@ -94,8 +93,8 @@ class VolumeRenderer(InstancedRenderer):
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
-        p["u_overrun"].value = self.overrun
-        p["u_volume_partner"].value = tuple(float(v) for v in self.volume_partner)
+        p["u_depth_alpha"].value = 0.5
+        p["u_band"].value = (self.band[0], min(self.band[1], 1e9), self.band[2])
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)
@@ -119,6 +118,7 @@ class VolumeRenderer(InstancedRenderer):
             tex.use(unit)
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE | moderngl.BLEND)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
+        self.ctx.fbo.depth_mask = False
 
     def draw(self) -> None:
         if self.vao is not None and self.textures is not None and self.instance_count:
@@ -126,6 +126,7 @@ class VolumeRenderer(InstancedRenderer):
 
     def finalize(self) -> None:
         self.ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+        self.ctx.fbo.depth_mask = True
         self.ctx.blend_func = moderngl.DEFAULT_BLENDING
 
     def release(self) -> None:

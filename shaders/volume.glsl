@@ -57,8 +57,10 @@ uniform float u_slices;        // p_num: slices per direction
 uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
 uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
-uniform float u_overrun;       // cells a ray may run on past its cuboid
-uniform vec2 u_volume_partner; // 1 where the level before (x) or after (y) is a volume too
+uniform float u_depth_alpha;   // how opaque the ray is where its depth is taken
+// the heights over the ground this pass counts, and the share of their blades (render/frame.py:
+// a grass type standing over another is drawn in parts, among and over the other's grass)
+uniform vec3 u_band;
 // the vertical slices, stacked along v: the N across x (u runs along z), then the N across z
 // (u runs along x); one texture for both, so that a step fetches once (render/slices.py)
 uniform sampler2D u_side_color;
@@ -231,15 +233,12 @@ void main() {
     const float CROSSING_GAIN = 1.5;
     float crossing = CROSSING_GAIN / max(abs(d.x) + abs(d.z), 0.25);
     float depth_lambda = -1.0;
-    // The depth written is that of the point where the ray became this opaque. Inside a
-    // transition to another volume level, that level draws the rest of these cells' blades
-    // in the same place, also as a veil: a fragment holding part of them, its depth written
-    // where it was half opaque, hid half of the other level's fragments behind it, and the
-    // ground showed in the transition band (landscape valley); there the depth is written
-    // only where the ray is opaque. (Blades next to a volume are opaque and drawn first.)
-    bool to_volume = v_lod.y < 0.5 ? v_lod.x < 1.0 && u_volume_partner.y > 0.5
-                                   : v_lod.x > 0.0 && u_volume_partner.x > 0.5;
-    float depth_alpha = to_volume ? u_opaque : 0.5;
+    // The depth is that of the point where the ray became u_depth_alpha opaque: half, for the
+    // fragment's own test against what was drawn before it (ground, blades, image-based
+    // grass); where this volume's depth is written for another grass type's volume drawn
+    // after it (render/frame.py), opaque, so that it hides that grass only where it covers it.
+    float depth_alpha = u_depth_alpha;
+    float band_top = min(u_band.y, u_height);
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
     // or if there is none: u_floor < 0);
@@ -282,30 +281,41 @@ void main() {
     vec2 floor_ao_l = vec2(0.0);
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
-        if (all(greaterThanEqual(floor_at.xz, vec2(-u_overrun))) && all(lessThanEqual(floor_at.xz, v_size + u_overrun))) {
+        if (all(greaterThanEqual(floor_at.xz, vec2(0.0))) && all(lessThanEqual(floor_at.xz, v_size))) {
             floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
                                       facing * slope_l, floor_ao_l);
         }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
-    // Each crossing stands for the slab of its family around it (a slice holds the blades
-    // between it and its neighbours, thesis 4.2.1), i.e. for the ray's path from half the
-    // way back to the previous plane of that family to half the way on to the next. Only the
-    // part of that path inside the grass layer (0 … height over the ground) meets blades: the
-    // crossing counts that fraction of a slab, read at the middle of that part's heights. A
-    // ray through the layer in less than a slab (a slope facing the eye, a steep view) so
-    // meets the share of blades its path holds; counted only where the crossing point itself
-    // lay inside the layer, it met a whole slab or nothing by where the planes fell, and the
-    // soil showed in rings that follow the slice spacing (landscape valley, football high).
-    // the ray length a crossing stands for: crossings of either family come N (|d.x| + |d.z|)
-    // times per unit of the ray, each counted as 1 / (|d.x| + |d.z|) of a slab (below)
+    // Each crossing stands for the blades of the ray's path around it (a slice holds the
+    // blades between it and its neighbours, thesis 4.2.1): the crossings of both families cut
+    // the ray into stretches, each from half the way back to the crossing before (of either
+    // family) to half the way on to the next, the first from where the ray starts and the last
+    // to where it leaves what it may cross; each crossing counts the part of its stretch inside
+    // the grass layer (0 … height over the ground), in slabs: the ray's mean distance between
+    // crossings, p_inum / (|d.x| + |d.z|), is a slab's worth (the weight `crossing` counts it
+    // as 1 / (|d.x| + |d.z|) of a slab, below). The stretches tile the ray, so a ray through the
+    // layer in less than a slab (a slope facing the eye, a steep view) meets the share of
+    // blades its path holds wherever the planes fall. A slab's length about each crossing left
+    // the ray's two ends uncounted: a ray that meets the grass only near where it enters its
+    // cuboid (up a slope, through the cuboid's front wall) lost up to half of it, by where the
+    // planes fell, and the soil showed in rings that follow the slice spacing (the landscape's
+    // hill seen from its valley).
     float slab = p_inum / max(abs(d.x) + abs(d.z), 0.25);
+    vec2 spacing = p_inum / abs(safe_d);  // the ray between two planes of either family
+    // where the ray leaves its cuboid (by a wall or the top)
+    vec2 bound = mix(vec2(0.0), v_size, step(0.0, vec2(d.x, d.z)));
+    vec2 to_bound = (bound - e.xz) / safe_d;
+    float exit_lambda = min(to_bound.x, to_bound.y);
+    if (d.y > 1e-6) exit_lambda = min(exit_lambda, (top - e.y) / d.y);
     float prev_lambda = 0.0;
+    float rate_lambda = 0.0;
     float prev_y = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
     for (int i = 0; i < u_max_steps; ++i) {
         vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
         bool hit_x = w.x < w.y;
         float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
+        float next_lambda = hit_x ? min(w.x + spacing.x, w.y) : min(w.x, w.y + spacing.y);
         if (floor_lambda < lambda) {  // the horizontal slice lies before the next vertical one
             gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
             if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
@@ -313,31 +323,40 @@ void main() {
             if (g_alpha > u_opaque) break;
         }
         vec3 h = e + lambda * d;                              // eq. 5.18
-        // A ray may run on into the neighbouring cells (the patch tiles): a cell's fragment that
-        // stopped at its own side wall would leave a gap, since the neighbour's wall behind it
-        // fails the depth test once this fragment wrote depth.
-        if (h.y < 0.0 || h.y > top || any(lessThan(h.xz, vec2(-u_overrun)))
-            || any(greaterThan(h.xz, v_size + u_overrun))) break;
+        // The ray stops at its cuboid's walls: the cuboid beyond draws the rest of the grass
+        // along it, blended over or under this fragment (render/frame.py).
+        if (h.y < 0.0 || h.y > top || any(lessThan(h.xz, vec2(0.0)))
+            || any(greaterThan(h.xz, v_size))) break;
         vec2 gd = ground_density(design_uv(v_config, h.xz));
         // eqs. 6.16-6.18: shift the lookup by the ground under the hit
         float y = h.y - (gd.x - v_ground.x);
-        // the heights over the ground the crossing's slab of the ray spans (the ground taken
-        // as straight between this crossing and the previous one)
-        float rate = lambda - prev_lambda > 1e-4 ? (y - prev_y) / (lambda - prev_lambda) : d.y;
-        float half_rise = 0.5 * abs(rate) * slab;
-        float lo = y - half_rise, hi = y + half_rise;
+        // the heights over the ground the crossing's stretch spans (the ground taken as
+        // straight between this crossing and the previous one), from where the ray entered
+        float rate = lambda - rate_lambda > 1e-4 ? (y - prev_y) / (lambda - rate_lambda) : d.y;
+        float from = i == 0 ? 0.0 : 0.5 * (prev_lambda + lambda);
+        float to = next_lambda >= exit_lambda ? exit_lambda : 0.5 * (lambda + next_lambda);
+        float y_from = y - rate * (lambda - from), y_to = y + rate * (to - lambda);
+        float lo = min(y_from, y_to), hi = max(y_from, y_to);
         prev_lambda = lambda;
+        rate_lambda = lambda;
         prev_y = y;
         // under the ground the ray is hidden by the ground drawn before: nothing after counts
         if (hi < 0.0) break;
         if (y >= 0.0) reached = lambda;
-        if (lo > u_height) {
+        if (lo > band_top) {
             if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
             continue;
         }
-        float in_lo = max(lo, 0.0), in_hi = min(hi, u_height);
-        float inside = hi - lo > 1e-5 ? max(in_hi - in_lo, 0.0) / (hi - lo) : 1.0;
-        y = 0.5 * (in_lo + in_hi);
+        float in_lo = max(lo, u_band.x), in_hi = min(hi, band_top);
+        float share_in = hi - lo > 1e-5 ? max(in_hi - in_lo, 0.0) / (hi - lo) : 1.0;
+        float inside = share_in * (to - from) / slab;
+        // the stretch's blades are read at the middle of its heights inside the layer, and
+        // stand there on the ray: the crossing point itself may lie under the ground (a ray
+        // rising up a slope meets the ground within a stretch), and a depth written there hid
+        // the fragment behind the ground
+        float mid = 0.5 * (in_lo + in_hi);
+        float sample_lambda = abs(rate) > 1e-6 ? clamp(lambda + (mid - y) / rate, from, to) : lambda;
+        y = mid;
         float plane = hit_x ? pi.x : pi.y;
         float slice = mod(floor(plane * u_slices), u_slices);
         // the wind: read where the bent blades here stood at rest, moved along the slice
@@ -365,7 +384,7 @@ void main() {
         // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
         float share = lod_share(data.a, side_spread, density,
                                 lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
-        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share * inside);
+        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share * inside * u_band.z);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
             if (dot(n, -d) < 0.0) n = -n;
@@ -381,7 +400,7 @@ void main() {
             if (u_wind_on) n = turn(n, vec3(0.0, 1.0, 0.0), wind_axis(shear, y));
             float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
             gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
-            if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = lambda;
+            if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = sample_lambda;
             if (g_alpha > u_opaque) break;
         }
         if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
@@ -395,12 +414,8 @@ void main() {
     vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color(duv), design_ambient(duv),
                            design_diffuse(duv));
     color = technique(wind_view(color / g_alpha, lean)) * g_alpha;  // the technique view of the mean colour
-    // A ray that never became half opaque writes the depth of the farthest point it reached
-    // above the ground, not that of its entry: it ran out of steps, or left its cuboid (and the
-    // cell it may run on into) with the grass beyond still to come, which the neighbouring
-    // cuboids draw. Written at the entry, its faint fragment hid their fragments behind it from
-    // the depth test and let the ground show through (the cracks at the meadow default camera:
-    // scripts/ground_holes.py).
+    // A ray that never became that opaque takes the depth of the farthest point it reached
+    // above the ground: its grass lies before it, and the ground beyond.
     if (depth_lambda < 0.0) depth_lambda = reached;
     vec3 world = e + depth_lambda * d + base;
     vec4 clip = u_view_proj * vec4(world, 1.0);
