@@ -43,6 +43,9 @@ from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
 from render.wind import WindNoise
 
+# bands of distance the volume passes are drawn in, far to near, when there are several
+VOLUME_DEPTH_BANDS = 8
+
 
 class FrameAborted(Exception):
     """A frame given up before it was finished (FramePipeline.render's `abort`)."""
@@ -419,9 +422,18 @@ class FramePipeline:
         order = {"geometry": 0, "image": 1, "volume": 2}
         self._stack_layers()
         INF = float("inf")
+        # what each type's blades stand among: the tallest of the types shorter than it
+        tops = [g.image.layer_height() for g in self.grass_types]
         passes = []
         for index, batches in enumerate(drawn):
-            beneath = self.grass_types[index].beneath_height
+            own = tops[index]
+            mixed = [
+                other.image.textures.height
+                for j, other in enumerate(self.grass_types)
+                if j != index and own is not None and tops[j] is not None
+                and tops[j] < own
+            ]  # fmt: skip
+            beneath = float(max(mixed)) if mixed else None
             for (representation, slices), item in batches.items():
                 if representation != "volume":
                     passes.append(((order[representation], 0, -slices), representation, item, None))
@@ -431,16 +443,45 @@ class FramePipeline:
                     passes.append(((2, 0, -slices), representation, item, (0.0, beneath, 0.5)))
                     passes.append(((2, 2, -slices), representation, item, (0.0, beneath, 0.5)))
                     passes.append(((2, 3, -slices), representation, item, (beneath, INF, 1.0)))
-        for _, representation, (renderer, count), band in sorted(passes, key=lambda p: p[0]):
-            if band is not None:
-                renderer.band = band
-            if count:
-                if self._abort is not None and self._abort():
-                    raise FrameAborted
-                key = {"geometry": "t_g_ms", "volume": "t_v_ms", "image": "t_i_ms"}[representation]
+        passes.sort(key=lambda p: p[0])
+        volumes = [
+            (item[0], band) for _, kind, item, band in passes if kind == "volume" and item[1]
+        ]
+        for _, representation, (renderer, count), _band in passes:
+            if count and representation != "volume":
+                self._check_abort()
+                key = {"geometry": "t_g_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
+        # Several volume passes (levels, grass types, parts) cover the same places: drawn one
+        # after the other, the later pass's far cuboids went over the earlier one's near ones.
+        # They are drawn in bands of distance, far to near, each band pass by pass.
+        distances = [r.distances for r, _ in volumes if r.distances is not None]
+        bands = VOLUME_DEPTH_BANDS if len(volumes) > 1 else 1
+        edges = (
+            np.quantile(np.concatenate(distances), np.linspace(1.0, 0.0, bands + 1))
+            if (distances and sum(d.size for d in distances))
+            else np.array([np.inf, -np.inf])
+        )
+        edges[0], edges[-1] = np.inf, -np.inf
+        for b in range(len(edges) - 1):
+            for renderer, band in volumes:
+                far = renderer.distances if renderer.distances is not None else np.zeros(0)
+                start = int(np.searchsorted(-far, -edges[b], side="right")) if b else 0
+                stop = int(np.searchsorted(-far, -edges[b + 1], side="right"))
+                if b == len(edges) - 2:
+                    stop = far.size
+                if stop <= start or renderer.cells is None:
+                    continue
+                self._check_abort()
+                renderer.set_instances(renderer.cells[start:stop])
+                renderer.band = band
+                stats.t_v_ms += timed(lambda r=renderer: _passes(r, frame))
         self.overlay.draw(frame)
+
+    def _check_abort(self) -> None:
+        if self._abort is not None and self._abort():
+            raise FrameAborted
 
     def _stack_layers(self) -> None:
         """Tell each type's image-based renderer which types' slices lie below its own, and
@@ -460,9 +501,6 @@ class FramePipeline:
             grass.image.under_channels = tuple(other.density_channel for other in under)
             tallest = max(under, key=lambda other: other.image.textures.height, default=None)
             grass.image.under = tallest.image.textures.canopy if tallest is not None else None
-            grass.beneath_height = (
-                float(tallest.image.textures.height) if tallest is not None else None
-            )
             for volume in grass.volumes.values():
                 volume.floor = None if under else VolumeRenderer.floor
 

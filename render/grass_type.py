@@ -57,8 +57,6 @@ class GrassTypeRenderer:
         self.slope = SlopeTable(ctx, lambda: self.patch, self._canopy)
         self.image.slope = self.slope
         self.lod = LodConfig()
-        # the slices' height of the tallest grass type beneath this one (render/frame.py), or None
-        self.beneath_height: float | None = None
         self._slices: dict[int, SliceTextures] = {}  # by slice count, one patch, one size
         self._slices_source: tuple[GrassPatch, tuple[int, int, int]] | None = None
         self._instances = np.zeros(0, INSTANCE_DTYPE)
@@ -160,10 +158,13 @@ class GrassTypeRenderer:
             renderer = {"geometry": self.geometry, "image": self.image}.get(representation)
             if renderer is None:
                 renderer = self.volume(n)
+                far = np.zeros(instances.size)
                 if eye is not None and instances.size:  # far to near: blended in that order
                     centre = instances["origin"] + 0.5 * instances["size"]
                     far = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
-                    instances = instances[np.argsort(-far, kind="stable")]
+                    order = np.argsort(-far, kind="stable")
+                    instances, far = instances[order], far[order]
+                renderer.cells, renderer.distances = instances, far
             renderer.set_instances(instances)
             if representation != "geometry":  # blades stand in single cells: their own w
                 renderer.fade = cells.fades.get(key, NO_FADE)

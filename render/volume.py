@@ -44,6 +44,9 @@ class VolumeRenderer(InstancedRenderer):
     # the heights over the ground a pass counts (render/frame.py draws a grass type that
     # stands over another in two bands)
     band = (0.0, float("inf"), 1.0)
+    # the cells of the frame, far to near, and their distances (render/grass_type.py upload)
+    cells: np.ndarray | None = None
+    distances: np.ndarray | None = None
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -93,7 +96,8 @@ class VolumeRenderer(InstancedRenderer):
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
-        p["u_depth_alpha"].value = 0.5
+        # half opaque, as the whole of the blades would be: a pass holding a share of them
+        p["u_depth_alpha"].value = 1.0 - 0.5 ** self.band[2]
         p["u_band"].value = (self.band[0], min(self.band[1], 1e9), self.band[2])
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width

@@ -284,6 +284,9 @@ void main() {
         if (all(greaterThanEqual(floor_at.xz, vec2(0.0))) && all(lessThanEqual(floor_at.xz, v_size))) {
             floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
                                       facing * slope_l, floor_ao_l);
+            // in this pass's band of heights, with its share of the blades (u_band)
+            bool in_band = u_floor >= u_band.x && u_floor < min(u_band.y, u_height + 1.0);
+            floor_sample.a = in_band ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), u_band.z) : 0.0;
         }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
