@@ -344,7 +344,8 @@ void main() {
         rate_lambda = lambda;
         prev_y = y;
         // under the ground the ray is hidden by the ground drawn before: nothing after counts
-        if (hi < 0.0) break;
+        // (nor, for a pass of the heights over another grass, under those heights: u_band)
+        if (hi < u_band.x) break;
         if (y >= 0.0) reached = lambda;
         if (lo > band_top) {
             if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
