@@ -164,8 +164,9 @@ class GrassTypeRenderer:
                     far = np.hypot(centre[:, 0] - eye[0], centre[:, 1] - eye[2])
                     order = np.argsort(-far, kind="stable")
                     instances, far = instances[order], far[order]
-                renderer.cells, renderer.distances = instances, far
-            renderer.set_instances(instances)
+                renderer.cells, renderer.distances = instances, far  # uploaded by distance band
+            else:
+                renderer.set_instances(instances)
             if representation != "geometry":  # blades stand in single cells: their own w
                 renderer.fade = cells.fades.get(key, NO_FADE)
             batches[key] = (renderer, int(instances.size))
