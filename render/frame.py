@@ -41,10 +41,8 @@ from render.slices import SliceTextures
 from render.tiling import TilingNoise
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
+from render.volume_order import DEPTH_BANDS, beneath_heights, distance_bands, height_parts
 from render.wind import WindNoise
-
-# bands of distance the volume passes are drawn in, far to near, when there are several
-VOLUME_DEPTH_BANDS = 8
 
 
 class FrameAborted(Exception):
@@ -412,71 +410,40 @@ class FramePipeline:
                     stats.blades += blades
                     stats.triangles += triangles
         # The volume blends its partly covered fragments over what is already drawn, so it goes
-        # last: behind its far edge the image-based grass must be there already, not the soil.
-        # Its cuboids are blended far to near (render/grass_type.py sorts them), each ray
-        # counting the grass in its own cuboid, and write no depth that would hide another's
-        # fragments behind them (a faint veil hid the rest of the grass along its ray: bare
-        # bands where levels hand over, rings on hills). A grass type that stands over another
-        # is drawn in two bands of height: the part among the shorter grass before it, the part
-        # above it after, over it.
+        # last: behind its far edge the image-based grass must be there already, not the soil;
+        # its passes' order is render/volume_order.py's.
         order = {"geometry": 0, "image": 1, "volume": 2}
         self._stack_layers()
-        INF = float("inf")
-        # what each type's blades stand among: the tallest of the types shorter than it
-        tops = [g.image.layer_height() for g in self.grass_types]
+        beneath = beneath_heights(
+            [g.image.layer_height() for g in self.grass_types],
+            [g.image.textures.height if g.image.textures else 0.0 for g in self.grass_types],
+        )
         passes = []
+        volumes = []
         for index, batches in enumerate(drawn):
-            own = tops[index]
-            mixed = [
-                other.image.textures.height
-                for j, other in enumerate(self.grass_types)
-                if j != index and own is not None and tops[j] is not None
-                and tops[j] < own
-            ]  # fmt: skip
-            beneath = float(max(mixed)) if mixed else None
-            for (representation, slices), item in batches.items():
+            for (representation, slices), (renderer, count) in batches.items():
                 if representation != "volume":
-                    passes.append(((order[representation], 0, -slices), representation, item, None))
-                elif beneath is None:
-                    passes.append(((2, 1, -slices), representation, item, (0.0, INF, 1.0)))
-                else:
-                    passes.append(((2, 0, -slices), representation, item, (0.0, beneath, 0.5)))
-                    passes.append(((2, 2, -slices), representation, item, (0.0, beneath, 0.5)))
-                    passes.append(((2, 3, -slices), representation, item, (beneath, INF, 1.0)))
-        passes.sort(key=lambda p: p[0])
-        volumes = [
-            (item[0], band) for _, kind, item, band in passes if kind == "volume" and item[1]
-        ]
-        for _, representation, (renderer, count), _band in passes:
-            if count and representation != "volume":
+                    passes.append(
+                        ((order[representation], -slices), representation, renderer, count)
+                    )
+                elif count:
+                    for phase, band in height_parts(beneath[index]):
+                        volumes.append(((phase, -slices), renderer, band))
+        for _, representation, renderer, drawn_count in sorted(passes, key=lambda p: p[0]):
+            if drawn_count:
                 self._check_abort()
                 key = {"geometry": "t_g_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
-        # Several volume passes (levels, grass types, parts) cover the same places: drawn one
-        # after the other, the later pass's far cuboids went over the earlier one's near ones.
-        # They are drawn in bands of distance, far to near, each band pass by pass.
-        distances = [r.distances for r, _ in volumes if r.distances is not None]
-        bands = VOLUME_DEPTH_BANDS if len(volumes) > 1 else 1
-        edges = (
-            np.quantile(np.concatenate(distances), np.linspace(1.0, 0.0, bands + 1))
-            if (distances and sum(d.size for d in distances))
-            else np.array([np.inf, -np.inf])
-        )
-        edges[0], edges[-1] = np.inf, -np.inf
-        for b in range(len(edges) - 1):
-            for renderer, band in volumes:
-                far = renderer.distances if renderer.distances is not None else np.zeros(0)
-                start = int(np.searchsorted(-far, -edges[b], side="right")) if b else 0
-                stop = int(np.searchsorted(-far, -edges[b + 1], side="right"))
-                if b == len(edges) - 2:
-                    stop = far.size
-                if stop <= start or renderer.cells is None:
-                    continue
-                self._check_abort()
-                renderer.set_instances(renderer.cells[start:stop])
-                renderer.band = band
-                stats.t_v_ms += timed(lambda r=renderer: _passes(r, frame))
+        volumes.sort(key=lambda v: v[0])
+        count = DEPTH_BANDS if len(volumes) > 1 else 1
+        for row in distance_bands([r.distances for _, r, _ in volumes], count):
+            for (_, renderer, band), part in zip(volumes, row, strict=True):
+                if part.stop > part.start:
+                    self._check_abort()
+                    renderer.set_instances(renderer.cells[part])
+                    renderer.band = band
+                    stats.t_v_ms += timed(lambda r=renderer: _passes(r, frame))
         self.overlay.draw(frame)
 
     def _check_abort(self) -> None:

@@ -1,0 +1,35 @@
+"""The order of the volume passes (render/volume_order.py): bands of distance that cover every
+cell once, far to near, and the parts of a grass type standing over another."""
+
+import numpy as np
+
+from render.volume_order import INF, beneath_heights, distance_bands, height_parts
+
+
+def test_distance_bands_take_every_cell_once_far_to_near():
+    rng = np.random.default_rng(2)
+    distances = [np.sort(rng.uniform(0, 100, n))[::-1] for n in (50, 7, 0, 120)]
+    rows = distance_bands(distances, 8)
+    assert len(rows) == 8
+    for d, parts in zip(distances, zip(*rows, strict=True), strict=True):
+        taken = np.concatenate([np.arange(d.size)[p] for p in parts])
+        assert np.array_equal(taken, np.arange(d.size))  # each once, in order
+    # a band's cells all lie farther than the next band's, across the arrays
+    for near, far in zip(rows[1:], rows[:-1], strict=False):
+        nearest = min(d[p].min() for d, p in zip(distances, far, strict=True) if p.stop > p.start)
+        farthest = max(d[p].max() for d, p in zip(distances, near, strict=True) if p.stop > p.start)
+        assert farthest <= nearest
+
+
+def test_one_pass_is_one_band():
+    d = [np.array([3.0, 2.0, 1.0])]
+    assert distance_bands(d, 1) == [[slice(0, 3)]]
+
+
+def test_a_taller_type_is_drawn_in_parts_around_the_shorter():
+    beneath = beneath_heights([0.5, 0.2, None], [0.7, 0.3, 0.0])
+    assert beneath == [0.3, None, None]
+    assert height_parts(None) == [(1, (0.0, INF, 1.0))]
+    parts = height_parts(0.3)
+    assert [p for p, _ in parts] == [0, 2, 3]  # before, after the shorter (phase 1), above
+    assert sum(band[2] for _, band in parts if band[1] == 0.3) == 1.0  # its blades once
