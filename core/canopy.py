@@ -117,6 +117,18 @@ class Canopy:
         rows = np.clip(np.floor(y / dy).astype(np.int64), 0, len(sigma) - 1)
         return values, np.where(y >= self.height, len(sigma), rows)
 
+    def side_column(self, above: float = 0.0) -> float:
+        """The optical depth of the grass a level ray meets per patch length, summed over the
+        rows from height `above` (world units) to the top: Σ σ(y) dy, the families' mean, as
+        the slices' mean alpha says it (no GAIN). A ray at elevation θ crosses those rows over
+        1 / tan θ patch lengths for each unit of height, so its depth through them from the
+        side is this / tan θ (the image-based grass's coverage, shaders/image.glsl)."""
+        sigma = np.mean([profile[0] for profile in self.profiles], axis=0)
+        dy = self.height / len(sigma)
+        lows = np.arange(len(sigma)) * dy
+        part = np.clip((lows + dy - above) / dy, 0.0, 1.0)  # of each row, the share above
+        return float((sigma * part).sum() * dy)
+
     def shade_met(
         self, ao_height: float, under: Canopy | None = None, count: int = ELEVATIONS
     ) -> np.ndarray:

@@ -86,25 +86,21 @@ class ImageRenderer:
         # the types whose grass lies beneath this one's (render/frame.py)
         self.under_channels: tuple[int, ...] = ()
         self.under: Canopy | None = None  # the tallest of those types' (core/canopy.py)
-        # over_table's last result and the two canopies it is of (held, so never mistaken for
+        # over_colors' last result and the two canopies it is of (held, so never mistaken for
         # new ones that reuse their ids)
-        self._over: tuple[tuple[Canopy, Canopy], tuple[np.ndarray, np.ndarray]] | None = None
+        self._over: tuple[tuple[Canopy, Canopy], np.ndarray] | None = None
         # level_shade's last result and what it is of (held, as _over)
         self._shade: tuple[tuple, tuple[np.ndarray, np.ndarray]] | None = None
 
-    def over_table(self) -> tuple[np.ndarray, np.ndarray]:
-        """Per elevation of core/canopy.py's table, the exponent that turns the top view's
-        alpha into the share of a ray this grass stops above the grass beneath it, and the
-        colour it shows there (cached for the two canopies)."""
+    def over_colors(self) -> np.ndarray:
+        """Per elevation of core/canopy.py's table, the colour this grass shows a ray above the
+        grass beneath it (cached for the two canopies)."""
         t = self.textures
         assert t is not None
         assert self.under is not None
         key = (t.canopy, self.under)
         if self._over is None or self._over[0][0] is not key[0] or self._over[0][1] is not key[1]:
-            share, colours = t.canopy.over(self.under)
-            top = np.log(max(1.0 - t.top_alpha, 1e-4))
-            exponent = np.log(np.maximum(1.0 - share, 1e-4)) / min(top, -1e-4)
-            self._over = (key, (exponent.astype(np.float32), colours))
+            self._over = (key, t.canopy.over(self.under)[1])
         return self._over[1]
 
     def level_shade(self, ao_height: float) -> tuple[np.ndarray, np.ndarray]:
@@ -156,9 +152,12 @@ class ImageRenderer:
         own, over = self.level_shade(frame.lighting.blade_ao_height)
         p["u_level_shade"].write(np.ascontiguousarray(own, np.float32))
         p["u_over_shade"].write(np.ascontiguousarray(over, np.float32))
+        canopy = self.textures.canopy
+        p["u_top_depth"].value = -float(np.log(max(1.0 - self.textures.top_alpha, 1e-4)))
+        p["u_side_column"].value = canopy.side_column()
+        p["u_over_column"].value = canopy.side_column(self.under.height) if self.under else 0.0
         if self.under_channels and self.under is not None:
-            exponent, colours = self.over_table()
-            p["u_over_exponent"].write(np.ascontiguousarray(exponent, np.float32))
+            colours = self.over_colors()
             p["u_over_colors"].write(np.ascontiguousarray(colours, np.float32))
         p["u_top_mean"].value = tuple(float(v) for v in self.textures.top.mean_color)
         p["u_density"].value = float(self.density)

@@ -56,10 +56,14 @@ uniform vec4 u_under;          // 1 for each density channel whose grass lies be
 // colour and height; and the top view's mean colour
 uniform vec3 u_level_colors[8];
 // over another type's grass (u_under), per elevation of the same table (render/image.py,
-// core/canopy.py Canopy.over): the exponent that turns the top view's alpha into the share of
-// a ray these blades stop above the grass beneath, and the colour they show it
-uniform float u_over_exponent[8];
+// core/canopy.py Canopy.over): the colour these blades show a ray above the grass beneath
 uniform vec3 u_over_colors[8];
+// the optical depths of the blades (core/canopy.py side_column): seen from straight above (the
+// top view's mean alpha, −ln(1 − a)), and of a level ray per patch length summed up the rows:
+// all of them, and those above the grass beneath (u_under)
+uniform float u_top_depth;
+uniform float u_side_column;
+uniform float u_over_column;
 // per elevation of the same table, the mean of 1 − smoothstep(0, B_height, y) over the heights
 // y the view meets (core/canopy.py Canopy.shade_met): AO_blade of what it meets
 uniform float u_level_shade[8];
@@ -102,12 +106,15 @@ void main() {
     vec4 c = textureGrad(u_top_color, uv, duv_x, duv_y);
     vec4 data = textureGrad(u_top_data, uv, duv_x, duv_y);
     float density = u_density * v_density * design_density(v_design);
-    // The top view's alpha is what covers the ground seen from straight above; a ray at
-    // elevation θ crosses the grass layer over 1 / sin θ of its height and meets that many
-    // times the blades: transmittance (1 - a)^(1 / sin θ), as in a layer of random blades —
-    // where the grass reaches the ground. Above another type's grass (u_under: the density
-    // channels of the types whose slices lie lower) a ray that passes between these blades
-    // meets that grass instead: there the top view's own coverage holds.
+    // The blades a ray meets (Campbell's ellipsoidal leaf-angle model). From straight above
+    // they are what the top view covers, depth τ_top = −ln(1 − a); from the side, what the
+    // vertical slices' rows stop, their column depth over tan θ (core/canopy.py side_column;
+    // above another type's grass, u_under: the density channels of the types whose slices lie
+    // lower, only the rows above that grass, for a ray passing between these blades meets it);
+    // between, the two are the axes of an ellipse: τ(θ) = √(τ_top² + (column / tan θ)²). For
+    // randomly turned blades the two agree and this is τ_top / sin θ; upright blades show
+    // nothing from above (a vertical ribbon has no area there) and are all side. The side part
+    // varies texel by texel as the top view's depth does about its mean, where there is one.
     // (the elevation θ of the ray over the grass layer: upright blades on ground that rises
     // towards the eye are crossed over a shorter run than on flat ground, and a ray descending
     // at tan e over a rise of gradient g along it meets the ground after h / (tan e + g), so
@@ -125,20 +132,22 @@ void main() {
     float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
     int i = int(floor(row));
     int j = min(i + 1, 7);
-    // Over another type's grass only the part of these blades above it stops a ray before it
-    // meets that grass: from above the top view's own coverage, towards the horizon what the
-    // vertical slices' rows above the other grass stop (a level view into the meadow's tall
-    // grass covered the short grass between its blades olive, where the blades show it).
-    float k_over = mix(1.0, mix(u_over_exponent[i], u_over_exponent[j], row - float(i)), 1.0 - sin_up);
-    float k = mix(max(1.0 / sin_up, 1.0), k_over, under);
-    c.a = 1.0 - pow(max(1.0 - c.a, 0.0), k);
-    // how level the view meets this grass's canopy (0 from above)
-    float level = 1.0 - sin_up;
+    bool top_seen = u_top_depth > 1e-3;  // a top view with something in it
+    float tan_up = sin_up / max(sqrt(1.0 - sin_up * sin_up), 1e-3);
+    float tau_top = -log(max(1.0 - c.a, 1e-4));
+    float rel = 1.0;
+    float tau_side = rel * mix(u_side_column, u_over_column, under) / tan_up;
+    float tau = sqrt(tau_top * tau_top + tau_side * tau_side);
+    c.a = 1.0 - exp(-tau);
+    // of what the ray meets, the share its side part shows (the ellipse's part along it)
+    float side = tau_side * tau_side / max(tau * tau, 1e-8);
+    // without a top view, the thresholds under a texel are all the blades': uniform
+    float threshold = top_seen ? data.a : 0.5;
     if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
     vec2 size = vec2(textureSize(u_top_color, 0));
     float lod = max(log2(max(length(duv_x * size), length(duv_y * size))), 0.0);
     // of the blades under the texel, the share kept; alpha-to-coverage draws that share
-    c.a *= lod_share(data.a, level_value(u_top_spread, lod), density,
+    c.a *= lod_share(threshold, top_seen ? level_value(u_top_spread, lod) : 0.28867513, density,
                      lod_at(v_lod, distance(u_eye.xz, v_world.xz), v_size));
     if (c.a < 0.02) discard;
     // The normal is not mirrored: far away a mirrored macro-cell would flip the small sideways
@@ -147,12 +156,14 @@ void main() {
     vec3 n = slice_normal(data);  // turned up, as the mean normal
     vec3 to_eye = normalize(u_eye - v_world);
     // Seen from above, the top view shows between the tips the blades' lower, darker parts, which
-    // a level view does not reach: towards the horizon the colour turns to what a view from that
-    // elevation meets of the vertical slices (core/canopy.py), where the grass is the ground's.
+    // a level view does not reach: as far as the ray meets the blades from the side, the colour
+    // is what a view from that elevation meets of the vertical slices (core/canopy.py), varied
+    // texel by texel as the top view's colour varies about its mean.
     vec3 met = mix(mix(u_level_colors[i], u_level_colors[j], row - float(i)),
                    mix(u_over_colors[i], u_over_colors[j], row - float(i)), under);
     vec3 tint = met / max(u_top_mean, vec3(1e-3));
-    vec3 albedo = modulate(c.rgb * mix(vec3(1.0), tint, level), design_color(v_design));
+    vec3 seen_side = top_seen ? c.rgb * tint : met;
+    vec3 albedo = modulate(mix(c.rgb, seen_side, side), design_color(v_design));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
     // the slice's own normal varies about the patch's mean normal; on a slope, as the upright
     // blades there differ from those on flat ground at this elevation over the ground
@@ -161,8 +172,8 @@ void main() {
     // normal turns with their curve at the height the top view shows (wind_axis).
     vec3 axis = wind_axis(shear, u_canopy * shear.top);
     const vec3 UP = vec3(0.0, 1.0, 0.0);
-    float detail = lambert_through(turn(n, UP, axis))
-                 / max(lambert_through(turn(u_mean_normal, UP, axis)), 0.05);
+    float detail = top_seen ? lambert_through(turn(n, UP, axis))
+                              / max(lambert_through(turn(u_mean_normal, UP, axis)), 0.05) : 1.0;
     float l = facing_leaned(facing_entry(to_eye), lean) * clamp(detail, 0.25, 2.0)
             * slope_ratio_flat(to_eye, theta, across);
     // AO_blade (eq. 6.11) of what the view meets of the blades

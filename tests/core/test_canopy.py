@@ -75,3 +75,20 @@ def test_the_ao_a_view_meets_darkens_as_it_reaches_down():
     assert shade[0] < 0.05 and shade[-1] > 0.2
     dense = Canopy.of([slices([(0.0, 0.0, 1.0, 0.9)] * 8)], 0.5)
     assert np.all(canopy.shade_met(0.5, dense)[2:] < shade[2:])
+
+
+def test_a_level_rays_column_depth_sums_the_rows_above_a_height():
+    """Two slices of rows with mean alpha 0.2 and 0.5: a level ray through one patch length of
+    a row meets 1 − 0.8 · 0.5 of it, depth −ln 0.4 per patch length; four rows of a grass 1 tall
+    sum to that, and the rows above 0.25 (three of them) or 0.375 (two and a half) to their
+    share (core/canopy.py side_column, the image-based grass's depth from the side)."""
+    from core.canopy import Canopy
+
+    stack = np.zeros((2, 4, 4, 4), np.float32)
+    stack[0, ..., 3], stack[1, ..., 3] = 0.2, 0.5
+    canopy = Canopy.of([stack], 1.0)
+    depth = -np.log(0.8 * 0.5)
+    assert np.isclose(canopy.side_column(), depth)
+    assert np.isclose(canopy.side_column(0.25), 0.75 * depth)
+    assert np.isclose(canopy.side_column(0.375), 0.625 * depth)
+    assert canopy.side_column(1.0) == 0.0

@@ -238,3 +238,31 @@ def test_far_grass_lights_upright_blades_on_a_slope_like_the_blades(
         assert seen["ambient"] > 0.8 * 255, (drawn, seen)  # the window is grass
         diffuse[drawn] = seen["sun"] / seen["ambient"]
     assert abs(diffuse[mode] / diffuse["geometry"] - 1.0) < within, diffuse
+
+
+@pytest.mark.parametrize("camera", ["grazing", "default"])
+def test_upright_blades_cover_the_ground_far_away_as_their_geometry_does(headless, camera):
+    """Blades standing upright (tilt 0, a patch the panel allows) have no area seen from
+    straight above: their top view is empty. The image-based grass takes what a ray meets from
+    the side from the vertical slices (shaders/image.glsl, core/canopy.py side_column); with the
+    top view alone it drew nothing and the soil showed wherever it stood. White blades over
+    black soil in white ambient light: a pixel's grey is how much of it the grass covers."""
+    import dataclasses
+
+    scene = get_scene("patch-grid")
+    scene = dataclasses.replace(scene, params=scene.params.replace(tilt_min=0.0, tilt_max=0.0))
+    doc = scene.recoloured((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)).document()
+    doc.light = dataclasses.replace(
+        doc.light, sun_color=(0.0, 0.0, 0.0), ambient_color=(1.0, 1.0, 1.0),
+        blade_ao_impact=0.0, soil_color=(0.0, 0.0, 0.0), fog_distance=1e6,
+    )  # fmt: skip
+    grey = {}
+    for mode in ("geometry", "image"):
+        renderer = headless(doc, mode=mode)
+        renderer.pipeline.ground.under_grass = (0.0, 0.0, 0.0)
+        image, _ = renderer.render(doc.camera(camera), (320, 240), measure=False)
+        grey[mode] = image.astype(np.float64).mean(axis=-1) / 255.0
+    ground = np.abs(grey["geometry"] - grey["geometry"][0, 0]) > 2 / 255  # not the sky
+    assert ground.mean() > 0.2
+    diff = grey["image"][ground].mean() - grey["geometry"][ground].mean()
+    assert abs(diff) < 0.1, diff
