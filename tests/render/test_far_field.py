@@ -118,18 +118,7 @@ def test_thinned_volume_covers_the_ground_as_its_thinned_blades_do(headless, den
     import dataclasses
 
     scene = dataclasses.replace(get_scene("patch-grid"), density=density)
-    doc = scene.recoloured((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)).document()
-    doc.light = dataclasses.replace(
-        doc.light, sun_color=(0.0, 0.0, 0.0), ambient_color=(1.0, 1.0, 1.0),
-        blade_ao_impact=0.0, soil_color=(0.0, 0.0, 0.0), fog_distance=1e6,
-    )  # fmt: skip
-    grey = {}
-    for mode in ("geometry", "volume"):
-        renderer = headless(doc, mode=mode)
-        renderer.pipeline.ground.under_grass = (0.0, 0.0, 0.0)
-        image, _ = renderer.render(doc.camera("grazing"), (320, 240), measure=False)
-        grey[mode] = image.astype(np.float64).mean(axis=-1) / 255.0
-    ground = np.abs(grey["geometry"] - grey["geometry"][0, 0]) > 2 / 255  # not the sky
+    grey, ground = _cover(headless, scene, "volume", "grazing")
     diff = grey["volume"][ground].mean() - grey["geometry"][ground].mean()
     assert abs(diff) < 0.05, diff
 
@@ -251,18 +240,27 @@ def test_upright_blades_cover_the_ground_far_away_as_their_geometry_does(headles
 
     scene = get_scene("patch-grid")
     scene = dataclasses.replace(scene, params=scene.params.replace(tilt_min=0.0, tilt_max=0.0))
+    grey, ground = _cover(headless, scene, "image", camera)
+    assert ground.mean() > 0.2
+    diff = grey["image"][ground].mean() - grey["geometry"][ground].mean()
+    assert abs(diff) < 0.1, diff
+
+
+def _cover(headless, scene, mode: str, camera: str):
+    """White blades over black soil in white ambient light without AO, drawn as geometry and
+    as `mode` (320 × 240): per mode a pixel's grey, how much of it the grass covers; and the
+    pixels that are not the sky."""
+    import dataclasses
+
     doc = scene.recoloured((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)).document()
     doc.light = dataclasses.replace(
         doc.light, sun_color=(0.0, 0.0, 0.0), ambient_color=(1.0, 1.0, 1.0),
         blade_ao_impact=0.0, soil_color=(0.0, 0.0, 0.0), fog_distance=1e6,
     )  # fmt: skip
     grey = {}
-    for mode in ("geometry", "image"):
-        renderer = headless(doc, mode=mode)
+    for name in ("geometry", mode):
+        renderer = headless(doc, mode=name)
         renderer.pipeline.ground.under_grass = (0.0, 0.0, 0.0)
         image, _ = renderer.render(doc.camera(camera), (320, 240), measure=False)
-        grey[mode] = image.astype(np.float64).mean(axis=-1) / 255.0
-    ground = np.abs(grey["geometry"] - grey["geometry"][0, 0]) > 2 / 255  # not the sky
-    assert ground.mean() > 0.2
-    diff = grey["image"][ground].mean() - grey["geometry"][ground].mean()
-    assert abs(diff) < 0.1, diff
+        grey[name] = image.astype(np.float64).mean(axis=-1) / 255.0
+    return grey, np.abs(grey["geometry"] - grey["geometry"][0, 0]) > 2 / 255
