@@ -9,6 +9,7 @@ frame (core/quality.py has the figures):
 - where the all-geometry reference is affordable (the meadow, the bench, the patch grid): each
   representation's region mean colour against the reference's same region, and the hand-over
   steps against the reference's steps across the same blocks;
+- the football: how continuous each touchline is (core/quality.py line_gaps), where it shows;
 - the meadow with the wind: how much the image-based region changes between two moments, as a
   share of what the volume region changes.
 
@@ -29,7 +30,7 @@ from core.camera import Camera
 from core.document import Document
 from core.image_diff import to_float
 from core.params import PRESETS
-from core.quality import bare_blocks, level_steps, technique_regions
+from core.quality import bare_blocks, level_steps, line_gaps, screen_path, technique_regions
 
 MAGENTA = (1.0, 0.0, 1.0)
 DEM_SCALE = 6.0  # world units for white of the stand-in DEM (docs/far-field.md)
@@ -48,6 +49,7 @@ LIMITS = {
     "region_colour": 0.03,  # meadow, bench: each representation's region mean colour
     "steps_over_reference": 1.5,  # meadow, bench: across the same blocks as all-geometry
     "wind_image_share": 1.0 / 3.0,  # the image-based region moves ≥ a third of the volume's
+    "touchline_gaps": 0.1,  # football: a touchline's points in gaps, where it shows
 }
 
 
@@ -157,6 +159,8 @@ def case_figures(case: Case, size: tuple[int, int], wind: bool) -> tuple[dict, n
             row["reference"] = f"not drawn: {triangles:,} triangles, ~{estimate:.0f} s"
         steps = level_steps(shaded, techniques, colors, reference)
         row["steps"] = steps
+        if case.scene == "football":
+            row["touchlines"] = _touchline_gaps(shaded, camera, get_scene(case.scene).grid)
         if wind and reference is not None:
             row["wind"] = _wind_figures(frames, document, camera, shaded, techniques, by_level)
         row["seconds"] = time.perf_counter() - start
@@ -164,6 +168,21 @@ def case_figures(case: Case, size: tuple[int, int], wind: bool) -> tuple[dict, n
         frames.release()
     row["checks"] = _checks(case, row)
     return row, shaded
+
+
+def _touchline_gaps(frame: np.ndarray, camera: Camera, grid: tuple[int, int]) -> list[dict]:
+    """Per touchline of the football, its continuity in the frame (core/quality.py)."""
+    from core.markings import touchlines
+
+    h, w = frame.shape[:2]
+    view_proj = camera.projection(w / h) @ camera.view()
+    out = []
+    for line in touchlines(*grid):
+        points, across = screen_path(line, view_proj, (w, h))
+        out.append(
+            line_gaps(frame, points, across) if len(points) else {"samples": 0, "gaps": None}
+        )
+    return out
 
 
 def _wind_figures(frames, document, camera, shaded, techniques, by_level) -> dict:
@@ -195,6 +214,8 @@ def _checks(case: Case, row: dict) -> dict:
     steps = row.get("steps", {})
     if case.scene == "football":
         check("steps_p95", steps.get("p95_across_over_inside"), LIMITS["steps_p95"])
+        gaps = [line["gaps"] for line in row.get("touchlines", []) if line["gaps"] is not None]
+        check("touchline_gaps", max(gaps) if gaps else None, LIMITS["touchline_gaps"])
     if case.scene in ("meadow", "bench"):  # the DEM cases too: the meadow on other ground
         for name, value in row.get("region_colour", {}).items():
             check(f"region_colour_{name}", value, LIMITS["region_colour"])
@@ -275,6 +296,11 @@ def report(result: dict) -> str:
         if colours:
             parts.append(
                 "colour " + " ".join(f"{name[0]} {value:.3f}" for name, value in colours.items())
+            )
+        if row.get("touchlines"):
+            gaps = [line["gaps"] for line in row["touchlines"]]
+            parts.append(
+                "touchline gaps " + " ".join("–" if g is None else f"{g:.2f}" for g in gaps)
             )
         if "wind" in row and "image_over_volume" in row["wind"]:
             parts.append(f"wind image/volume {row['wind']['image_over_volume']:.2f}")

@@ -53,3 +53,16 @@ def football_colour_map(width: int, height: int, margin: float = 4.0) -> np.ndar
     )
     rgba[..., 3] = np.maximum(rgba[..., 3], white[..., 0])
     return rgba
+
+
+def touchlines(columns: int, rows: int, margin: float = 4.0, count: int = 4000) -> list[np.ndarray]:
+    """The two touchlines of `football_colour_map` on a terrain of columns × rows cells centred
+    on the world origin (core/terrain.py): per line, (count, 3) world points along it at the
+    ground, from one goal line to the other."""
+    sx = columns / (WIDTH + 2 * margin)  # world units a metre, across and along the pitch
+    sz = rows / (LENGTH + 2 * margin)
+    z = np.linspace(-LENGTH / 2, LENGTH / 2, count) * sz
+    return [
+        np.stack([np.full(count, side * WIDTH / 2 * sx), np.zeros(count), z], axis=-1)
+        for side in (-1, 1)
+    ]

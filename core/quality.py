@@ -242,3 +242,81 @@ def bare_blocks(
     counted = land >= 0.5
     share = float((soil[counted] > 0.5).mean()) if counted.any() else 0.0
     return {"bare_blocks": share, "terrain_blocks": int(counted.sum())}
+
+
+def screen_path(
+    world: np.ndarray, view_proj: np.ndarray, size: tuple[int, int]
+) -> tuple[np.ndarray, np.ndarray]:
+    """World points along a line ((n, 3), in order) as drawn in a frame of `size` (width,
+    height; row 0 at the top): those in front of the camera and on screen, about a pixel apart,
+    nearest first, and the unit screen direction across the line at each."""
+    w, h = size
+    clip = np.c_[world, np.ones(len(world))] @ view_proj.T
+    front = clip[:, 3] > 1e-6
+    ndc = clip[front, :2] / clip[front, 3:4]
+    xy = np.c_[(ndc[:, 0] + 1.0) * 0.5 * w, (1.0 - ndc[:, 1]) * 0.5 * h]
+    depth = clip[front, 3]
+    inside = (xy[:, 0] >= 0) & (xy[:, 0] < w) & (xy[:, 1] >= 0) & (xy[:, 1] < h)
+    xy, depth = xy[inside], depth[inside]
+    if len(xy) < 2:
+        return np.zeros((0, 2)), np.zeros((0, 2))
+    if depth[0] > depth[-1]:
+        xy = xy[::-1]
+    kept, last = [0], xy[0]
+    for i in range(1, len(xy)):  # a pixel apart (a few thousand points, once per check)
+        if np.hypot(*(xy[i] - last)) >= 1.0:
+            kept.append(i)
+            last = xy[i]
+    xy = xy[kept]
+    if len(xy) < 2:
+        return np.zeros((0, 2)), np.zeros((0, 2))
+    along = np.gradient(xy, axis=0)
+    along /= np.maximum(np.linalg.norm(along, axis=1, keepdims=True), 1e-9)
+    return xy, np.c_[-along[:, 1], along[:, 0]]
+
+
+def line_gaps(image: np.ndarray, points: np.ndarray, across: np.ndarray, window: int = 15) -> dict:
+    """How continuous a painted line is in a frame: `points` (n, 2) pixel positions (x, y)
+    along its drawn path about a pixel apart, `across` (n, 2) the unit screen direction across
+    it. At each point the line's contrast is the brightest luminance within 2 pixels across
+    less the mean 6 pixels either side; a gap is a point whose contrast falls below half of
+    what the line shows around it (the 75th percentile over `window` points), where that
+    stands out of the grass's own variation (twice the median difference of the two sides),
+    along at least half the line (else "gaps" is None). A line broken into
+    dots has about half its points in gaps; one that fades with distance has none."""
+    lum = to_float(image).mean(axis=-1)
+    h, w = lum.shape
+
+    def at(offset: float) -> np.ndarray:
+        p = np.rint(points + offset * across).astype(np.int64)
+        inside = (p[:, 0] >= 0) & (p[:, 0] < w) & (p[:, 1] >= 0) & (p[:, 1] < h)
+        out = np.full(len(points), np.nan)
+        out[inside] = lum[p[inside, 1], p[inside, 0]]
+        return out
+
+    near = np.stack([at(o) for o in (-2, -1, 0, 1, 2)])
+    line = np.where(
+        np.isfinite(near).any(axis=0), np.nanmax(np.nan_to_num(near, nan=-1.0), axis=0), np.nan
+    )
+    left, right = at(-6.0), at(6.0)
+    contrast = line - 0.5 * (left + right)
+    valid = np.isfinite(contrast)
+    contrast, grass = contrast[valid], np.abs(left - right)[valid]
+    if contrast.size < window:
+        return {"samples": int(contrast.size), "gaps": None}
+
+    def around(x: np.ndarray, q: float) -> np.ndarray:
+        padded = np.pad(x, window // 2, mode="edge")
+        return np.percentile(np.lib.stride_tricks.sliding_window_view(padded, window), q, axis=1)
+
+    level = around(contrast, 75)
+    # the line shows where it stands out of the grass's own variation beside it
+    shown = level > np.maximum(2.0 * around(grass, 50), 3.0 / 255.0)
+    gaps = shown & (contrast < 0.5 * level)
+    if shown.mean() < 0.5:  # too faint along most of its path to tell a gap from the grass
+        return {"samples": int(contrast.size), "gaps": None, "shown": float(shown.mean())}
+    return {
+        "samples": int(contrast.size),
+        "gaps": float(gaps.sum() / max(shown.sum(), 1)),
+        "shown": float(shown.mean()),
+    }

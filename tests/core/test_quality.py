@@ -139,3 +139,31 @@ def test_bare_blocks_counts_terrain_whose_soil_shows_and_not_the_sky():
     assert out["terrain_blocks"] == 48  # 6 of 8 block rows, not the sky's
     assert out["bare_blocks"] == pytest.approx(8 / 48)
     assert bare_blocks(shaded, shaded, techniques)["bare_blocks"] == 0.0
+
+
+def test_a_dashed_line_has_gaps_and_a_fading_one_has_none():
+    """core/quality.py line_gaps on a grey image with a white line along row 20: whole but
+    fading from 0.5 to 0.1 over its length, it has no gaps; dashed (3 pixels on, 3 off), about
+    half its points are gaps; drawn nowhere, it is not judged."""
+    from core.quality import line_gaps, screen_path
+
+    rng = np.random.default_rng(0)
+    base = 0.3 + 0.01 * rng.standard_normal((40, 200, 3))
+    x = np.arange(200)
+    points = np.c_[x, np.full(200, 20.0)]
+    across = np.tile((0.0, 1.0), (200, 1))
+    fading, dashed = base.copy(), base.copy()
+    fading[20, :, :] += np.linspace(0.5, 0.1, 200)[:, None]
+    dashed[20, (x // 3) % 2 == 0, :] += 0.4
+    assert line_gaps(fading, points, across)["gaps"] < 0.02
+    assert 0.35 < line_gaps(dashed, points, across)["gaps"] < 0.65
+    assert line_gaps(base, points, across)["gaps"] is None
+    # a line on the ground seen from above projects to pixels about one apart
+    from core.camera import Camera
+
+    camera = Camera.from_eye_target((0.0, 10.0, 0.1), (0.0, 0.0, 0.0))
+    world = np.c_[np.linspace(-2, 2, 500), np.zeros(500), np.zeros(500)]
+    xy, normal = screen_path(world, camera.projection(1.0) @ camera.view(), (100, 100))
+    steps = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+    assert len(xy) > 20 and np.all(steps >= 1.0) and np.all(steps < 1.5)
+    assert np.allclose(np.abs(normal[:, 1]), 1.0, atol=1e-3)  # across a level line: vertical
