@@ -6,7 +6,12 @@ step, and one fetch of one texture costs half of two fetches of the array on llv
 Edits upload only their rectangle, and not at once: a map may be edited while no GL context is
 current (a brush stroke from a mouse event), so each edit grows the pending dirty rectangle of
 its map, and `flush` (called by `use`, i.e. when a frame is drawn) uploads it. The dabs of one
-mouse move become one upload."""
+mouse move become one upload.
+
+The far representations read the colour map as a pixel's footprint on the ground sees it: a
+mipmapped copy of it (a field marking a texel wide, read at the base level far away, broke into
+dots). The stack itself stays without mip levels: on
+llvmpipe a mipmapped sampler cost the ground pass several times over even at level 0."""
 
 from __future__ import annotations
 
@@ -15,9 +20,10 @@ import numpy as np
 
 from core.design_maps import LAYER_INDEX, DesignMaps, Rect
 from core.heights import mesh_sink, mesh_size, quad_excess, vertex_sink
-from render.uniforms import DESIGN_UNIT, GROUND_UNIT
+from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
+COLOR = LAYER_INDEX["color"]
 
 
 def union(a: Rect | None, b: Rect) -> Rect:
@@ -40,12 +46,26 @@ class DesignMapTextures:
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = False
         self.texture.repeat_y = False
+        self.far = ctx.texture_array((w, h, 1), 4, self._far_texels((0, 0, w, h)), dtype="f2")
+        self.far.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+        self.far.repeat_x = False
+        self.far.repeat_y = False
+        self.far.build_mipmaps()
         self.uploaded_texels = w * h * layers  # for tests and the profiler: what went to the GPU
         self.pending: dict[int, Rect] = {}  # layer index -> dirty rectangle not yet uploaded
         self.grounds: dict[int, moderngl.Texture] = {}  # density channel -> (height, density)
         self._sink: moderngl.Texture | None = None  # the ground mesh's sink per vertex
         self._excess: np.ndarray | None = None  # … and its per-quad excess (core/heights.py)
         maps.changed.connect(self.update)
+
+    def _far_texels(self, rect: Rect) -> bytes:
+        """A rectangle of the colour map for the mipmapped copy, its RGB times its weight, so
+        that a mip level's mean mixes the blades' colour as the mean of its texels would (a
+        white line's share of a far pixel)."""
+        x, y, w, h = rect
+        texels = self.maps.stack[COLOR, y : y + h, x : x + w]
+        weighted = np.concatenate([texels[..., :3] * texels[..., 3:], texels[..., 3:]], axis=-1)
+        return np.ascontiguousarray(weighted.astype(np.float16)).tobytes()
 
     def _ground_texels(self, channel: int, rect: Rect) -> bytes:
         x, y, w, h = rect
@@ -107,6 +127,10 @@ class DesignMapTextures:
             data = np.ascontiguousarray(self.maps.stack[i, y : y + h, x : x + w].astype(np.float16))
             self.texture.write(data.tobytes(), viewport=(x, y, i, w, h, 1))
             self.uploaded_texels += w * h
+        if COLOR in self.pending:
+            x, y, w, h = self.pending[COLOR]
+            self.far.write(self._far_texels((x, y, w, h)), viewport=(x, y, 0, w, h, 1))
+            self.far.build_mipmaps()  # the football's map: a few ms on llvmpipe
         rect = None
         for i in (DENSITY, HEIGHT):
             if i in self.pending:
@@ -125,12 +149,14 @@ class DesignMapTextures:
         if self.pending:
             self.flush()
         self.texture.use(DESIGN_UNIT)
+        self.far.use(FAR_DESIGN_UNIT)
         for channel in channels:
             self.ground(channel).use(GROUND_UNIT + channel)
 
     def release(self) -> None:
         self.maps.changed.disconnect(self.update)
         self.texture.release()
+        self.far.release()
         for texture in self.grounds.values():
             texture.release()
         if self._sink is not None:

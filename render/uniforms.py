@@ -17,6 +17,7 @@ GROUND_UNIT = 8
 TILING_UNIT = 5  # the aperiodic tiling's noise map (render/tiling.py)
 WIND_UNIT = 13  # the wind's noise map (render/wind.py)
 SINK_UNIT = 14  # how far the ground mesh's vertices sink (render/ground.py)
+FAR_DESIGN_UNIT = 15  # the colour map, mipmapped (render/design_maps.py)
 
 
 @dataclass
@@ -47,6 +48,7 @@ class FrameUniforms:
             "u_ao_impact": self.lighting.blade_ao_impact,
             "u_ao_height": self.lighting.blade_ao_height,
             "u_design": DESIGN_UNIT,
+            "u_design_far": FAR_DESIGN_UNIT,
             "u_height_scale": float(self.height_scale),
             "u_technique_view": 1.0 if self.technique_view else 0.0,
             "u_technique_color": tuple(technique_color),

@@ -8,6 +8,28 @@ float design_density(vec2 uv) { return textureLod(u_design, vec3(uv, 0.0), 0.0)[
 vec4 design_color(vec2 uv) { return textureLod(u_design, vec3(uv, 1.0), 0.0); }
 vec3 design_ambient(vec2 uv) { return textureLod(u_design, vec3(uv, 2.0), 0.0).rgb; }
 vec3 design_diffuse(vec2 uv) { return textureLod(u_design, vec3(uv, 3.0), 0.0).rgb; }
+// The colour map as a pixel's footprint on the ground sees it (uv's change across the pixel, dx
+// and dy; its mipmapped copy, render/design_maps.py): a far representation's fragment covers
+// many texels, and a marking a texel wide read at the base level broke into dots. Seen at a
+// grazing angle the footprint is long and thin: the colour is the mean of taps along its long
+// axis, as many as it is times longer than wide (up to 4), each as wide as the short axis (the
+// texture's own anisotropic filter drew saw teeth beside the lines on llvmpipe; one tap at the
+// long axis's mip level washed the far lines out).
+uniform sampler2DArray u_design_far;  // the colour map, RGB times its weight
+const int DESIGN_TAPS = 4;
+vec4 design_color_at(vec2 uv, vec2 dx, vec2 dy) {
+    bool x_long = dot(dx, dx) > dot(dy, dy);
+    vec2 major = x_long ? dx : dy;
+    vec2 minor = x_long ? dy : dx;
+    int taps = int(clamp(ceil(length(major) / max(length(minor), 1e-9)), 1.0, float(DESIGN_TAPS)));
+    vec4 c = vec4(0.0);
+    for (int k = 0; k < taps; ++k) {
+        vec2 at = uv + major * ((float(k) + 0.5) / float(taps) - 0.5);
+        c += textureGrad(u_design_far, vec3(at, 0.0), major / float(taps), minor);
+    }
+    c /= float(taps);
+    return vec4(c.rgb / max(c.a, 1e-4), c.a);
+}
 
 // Terrain height in world units at a design-map uv (thesis 6.4.4, eq. 6.13 / 6.16).
 uniform float u_height_scale;

@@ -103,6 +103,7 @@ void main() {
     vec2 p = cell_mirror(v_origin + floor(at), v_mirror) * at;
     vec2 uv = vec2(p.x, 1.0 - p.y);
     vec2 duv_x = dFdx(v_patch), duv_y = dFdy(v_patch);
+    vec2 design_dx = dFdx(v_design), design_dy = dFdy(v_design);  // the footprint on the maps
     vec4 c = textureGrad(u_top_color, uv, duv_x, duv_y);
     vec4 data = textureGrad(u_top_data, uv, duv_x, duv_y);
     float density = u_density * v_density * design_density(v_design);
@@ -163,7 +164,8 @@ void main() {
                    mix(u_over_colors[i], u_over_colors[j], row - float(i)), under);
     vec3 tint = met / max(u_top_mean, vec3(1e-3));
     vec3 seen_side = top_seen ? c.rgb * tint : met;
-    vec3 albedo = modulate(mix(c.rgb, seen_side, side), design_color(v_design));
+    vec3 albedo = modulate(mix(c.rgb, seen_side, side),
+                           design_color_at(v_design, design_dx, design_dy));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
     // the slice's own normal varies about the patch's mean normal; on a slope, as the upright
     // blades there differ from those on flat ground at this elevation over the ground

@@ -153,6 +153,7 @@ void main() {
     vec3 eye = u_eye - base;
     float top = u_height + v_ground.y;
     vec3 d = normalize(v_patch - eye);                        // eq. 5.5 (no rotation yet)
+    vec3 d_dx = dFdx(d), d_dy = dFdy(d);  // how the ray turns across the pixel
     vec3 e = v_patch;                                         // eq. 5.4
     // On uneven ground the extruded cuboid holds empty space above the grass: march the ray
     // over the height map in a few coarse steps and start the slice stepping just before it
@@ -414,9 +415,16 @@ void main() {
         if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
     }
     if (g_alpha < 0.01) discard;
-    vec2 duv = design_uv(v_config, g_at / g_alpha);
-    vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color(duv), design_ambient(duv),
-                           design_diffuse(duv));
+    vec2 at = g_at / g_alpha;
+    vec2 duv = design_uv(v_config, at);
+    // the pixel's footprint on the ground there: a ray met at distance t moves its point on a
+    // level plane by t (δd − d δd.y / d.y) as its direction changes by δd (a ray differential)
+    float t = length(at - eye.xz) / max(length(d.xz), 1e-4);
+    float dy = d.y < 0.0 ? min(d.y, -0.01) : max(d.y, 0.01);
+    vec2 foot_x = t * (d_dx.xz - d.xz * d_dx.y / dy) * v_config.zw;
+    vec2 foot_y = t * (d_dy.xz - d.xz * d_dy.y / dy) * v_config.zw;
+    vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color_at(duv, foot_x, foot_y),
+                           design_ambient(duv), design_diffuse(duv));
     color = technique(wind_view(color / g_alpha, lean)) * g_alpha;  // the technique view of the mean colour
     // A ray that never became that opaque takes the depth of the farthest point it reached
     // above the ground: its grass lies before it, and the ground beyond.

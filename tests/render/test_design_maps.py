@@ -118,3 +118,18 @@ def test_mirror_bits_change_the_pixels_but_not_the_statistics(headless, only):
     mean_p = plain[mask_p].mean(axis=0)
     mean_t = tiled[mask_t].mean(axis=0)
     assert np.abs(mean_p - mean_t).max() < 4  # the same grass colour on average
+
+
+def test_the_far_copy_follows_colour_edits_weighted_and_mipmapped(ctx):
+    """The far representations read the colour map's mipmapped copy, RGB times its weight, so
+    that a level's mean is the mean of the colours the blades would be mixed with; an edit
+    reaches it at the next flush (its levels: tests/render/test_far_field.py's touchlines)."""
+    maps = DesignMaps(64)
+    mirror = DesignMapTextures(ctx, maps)
+    maps.write("color", 0, 0, np.full((64, 32, 4), (1.0, 0.5, 0.0, 0.5)))  # the left half
+    mirror.flush()
+    w, h = maps.size
+    base = np.frombuffer(mirror.far.read(), np.float16).reshape(-1, h, w, 4)[0]
+    np.testing.assert_allclose(base[:, :32], np.tile((0.5, 0.25, 0.0, 0.5), (64, 32, 1)))
+    assert np.all(base[:, 32:] == 0.0)  # white of weight 0 mixes in nothing
+    mirror.release()

@@ -264,3 +264,27 @@ def _cover(headless, scene, mode: str, camera: str):
         image, _ = renderer.render(doc.camera(camera), (320, 240), measure=False)
         grey[name] = image.astype(np.float64).mean(axis=-1) / 255.0
     return grey, np.abs(grey["geometry"] - grey["geometry"][0, 0]) > 2 / 255
+
+
+def test_the_footballs_touchlines_run_unbroken_to_the_far_end(headless):
+    """A touchline is a texel or so of the colour map wide. Read at the map's base level, far
+    away it broke into dashes (camera high, 1024 × 768: 0.52 of the far line's points in gaps);
+    the far representations read the map's mipmapped copy over the pixel's footprint
+    (shaders/_design.glsl), and the line fades but does not break."""
+    from core.markings import touchlines
+    from core.quality import line_gaps, screen_path
+
+    scene = get_scene("football")
+    doc = scene.document()
+    camera = doc.camera("high")
+    size = (1024, 768)
+    image, _ = headless(doc).render(camera, size, measure=False)
+    view_proj = camera.projection(size[0] / size[1]) @ camera.view()
+    judged = []
+    for line in touchlines(*scene.grid):
+        points, across = screen_path(line, view_proj, size)
+        gaps = line_gaps(image, points, across)["gaps"]
+        if gaps is not None:
+            judged.append(gaps)
+    assert len(judged) == 2  # both lines show along most of their length
+    assert max(judged) < 0.1, judged

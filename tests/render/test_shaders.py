@@ -24,7 +24,7 @@ EXPECTED = {
         "u_side_color",
         "u_side_data",
         "u_top_color",
-        "u_design",
+        "u_design_far",
         "in_corner",
         "in_size",
         "in_mirror",
