@@ -75,16 +75,51 @@ def level_view(families: list[np.ndarray], height: float, count: int = ELEVATION
 
 
 @dataclass(frozen=True)
+class BladeSides:
+    """What a level ray meets of a patch's blades, from their triangles: each triangle gives a
+    level ray crossing the patch the optical depth of its area seen along the ray, averaged over
+    the horizontal directions (2/π |n_xz| of it), times the share of it the blade's texture
+    keeps. A slice's mean alpha saturates where a slab's blades overlap (the football's turf: a
+    row of a one-slice family 0.99 opaque, depth 4.8 per patch length where its blades give
+    about 30), so the depth from the side is counted on the blades themselves."""
+
+    heights: np.ndarray  # the triangles' centroid heights, rising
+    above: np.ndarray  # the depth of the triangles from each of those up
+
+    @classmethod
+    def of(cls, positions: np.ndarray, uv: np.ndarray, triangles: np.ndarray) -> BladeSides:
+        """From a patch's vertex positions (m, 3), uv (m, 2) and triangle indices (t, 3)."""
+        from core.patch import blade_fill
+
+        p = np.asarray(positions, np.float64)
+        a, b, c = p[triangles[:, 0]], p[triangles[:, 1]], p[triangles[:, 2]]
+        cross = np.cross(b - a, c - a)  # twice the area along the normal
+        seen = 0.5 * np.hypot(cross[:, 0], cross[:, 2]) * (2.0 / np.pi)
+        depth = seen * blade_fill(np.asarray(uv)[triangles, 1].mean(axis=1))
+        order = np.argsort((a[:, 1] + b[:, 1] + c[:, 1]) / 3.0)
+        heights = ((a[:, 1] + b[:, 1] + c[:, 1]) / 3.0)[order]
+        return cls(heights, np.cumsum(depth[order][::-1])[::-1])
+
+    def column(self, above: float = 0.0) -> float:
+        """The depth of the blades from height `above` up, per patch length of a level ray."""
+        i = int(np.searchsorted(self.heights, above))
+        return float(self.above[i]) if i < len(self.above) else 0.0
+
+
+@dataclass(frozen=True)
 class Canopy:
     """The rows' extinction and colour of each family of a patch's vertical slices (what the
     tables here are computed from), kept small enough to keep beside the slices' textures."""
 
     profiles: tuple[tuple[np.ndarray, np.ndarray], ...]  # per family: σ (rows,), c (rows, 3)
     height: float
+    sides: BladeSides | None = None  # the blades' own depth from the side, where known
 
     @classmethod
-    def of(cls, families: list[np.ndarray], height: float) -> Canopy:
-        return cls(tuple(_profile(color) for color in families), float(height))
+    def of(
+        cls, families: list[np.ndarray], height: float, sides: BladeSides | None = None
+    ) -> Canopy:
+        return cls(tuple(_profile(color) for color in families), float(height), sides)
 
     def sigma_at(self, y: np.ndarray) -> np.ndarray:
         """Extinction per patch length at heights y (world units), the families' mean; 0 above
@@ -119,10 +154,13 @@ class Canopy:
 
     def side_column(self, above: float = 0.0) -> float:
         """The optical depth of the grass a level ray meets per patch length, summed over the
-        rows from height `above` (world units) to the top: Σ σ(y) dy, the families' mean, as
-        the slices' mean alpha says it (no GAIN). A ray at elevation θ crosses those rows over
-        1 / tan θ patch lengths for each unit of height, so its depth through them from the
-        side is this / tan θ (the image-based grass's coverage, shaders/image.glsl)."""
+        heights from `above` (world units) to the top: Σ σ(y) dy. From the blades themselves
+        where known (`sides`), else from the rows of the slices (the families' mean, as their
+        mean alpha says it, no GAIN). A ray at elevation θ crosses those heights over 1 / tan θ
+        patch lengths for each unit of height, so its depth through them from the side is this
+        / tan θ (the image-based grass's coverage, shaders/image.glsl; the volume's floor)."""
+        if self.sides is not None:
+            return self.sides.column(above)
         sigma = np.mean([profile[0] for profile in self.profiles], axis=0)
         dy = self.height / len(sigma)
         lows = np.arange(len(sigma)) * dy

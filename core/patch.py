@@ -151,6 +151,12 @@ def _strip_indices(blades: int, subdivisions: int) -> np.ndarray:
     return (base + quad[None, :]).astype(np.uint32).reshape(-1)
 
 
+def blade_fill(v) -> np.ndarray:
+    """The share of a blade's width its texture's mask keeps at v (0 at the root, 1 at the
+    tip): the blade narrows to a pointed tip (blade_texture)."""
+    return np.clip(1.0 - np.asarray(v, np.float64) ** 3, 0.0, 1.0) ** 0.6
+
+
 def blade_texture(size: tuple[int, int] = (32, 256), seed: int = 0) -> np.ndarray:
     """A procedural blade texture, RGBA uint8 of shape (height, width, 4).
 
@@ -162,7 +168,7 @@ def blade_texture(size: tuple[int, int] = (32, 256), seed: int = 0) -> np.ndarra
     u = (np.arange(w) + 0.5) / w
     v = (np.arange(h) + 0.5) / h
     uu, vv = np.meshgrid(u, v)
-    half_width = 0.5 * np.clip(1.0 - vv**3, 0.0, 1.0) ** 0.6  # pointed tip
+    half_width = 0.5 * blade_fill(vv)  # pointed tip
     edge = half_width - np.abs(uu - 0.5)
     alpha = np.clip(edge * w * 0.75 + 0.5, 0.0, 1.0)
     fibres = 0.85 + 0.15 * np.cos(uu * np.pi * 2.0 * 3.0 + rng.uniform(0, 6.28)) ** 2

@@ -21,6 +21,7 @@ import moderngl
 import numpy as np
 
 from core.camera import look_at, orthographic
+from core.canopy import BladeSides
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
 from core.patch import GrassPatch
@@ -44,6 +45,7 @@ class SlicedPatch:
     z: SliceLayers  # slabs across z; u runs along x
     top: SliceLayers  # one slice, n = 1
     height: float
+    sides: BladeSides | None = None  # the blades' depth from the side (core/canopy.py)
 
 
 def _tiles(offsets) -> np.ndarray:
@@ -143,7 +145,10 @@ class PatchConverter:
         top = self._read((top_size, top_size))
         yield total, total
         top = SliceLayers(*(a[None] for a in top))
-        return SlicedPatch(x=x, z=z, top=top, height=h)
+        sides = BladeSides.of(
+            patch.vertices["position"], patch.vertices["uv"], patch.indices.reshape(-1, 3)
+        )
+        return SlicedPatch(x=x, z=z, top=top, height=h, sides=sides)
 
     @staticmethod
     def _plan(runs: _BladeRuns, n: int, axis: int, across) -> list[list]:

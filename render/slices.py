@@ -140,7 +140,7 @@ class SliceLevels:
             layer_levels(sliced.top, top=True),
             h,
             level_view(families, h),
-            Canopy.of(families, h),
+            Canopy.of(families, h, sliced.sides),
             float(np.clip(sliced.top.color[..., 3].mean(), 0.0, 1.0)),
         )
 

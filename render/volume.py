@@ -99,6 +99,11 @@ class VolumeRenderer(InstancedRenderer):
         # half opaque, as the whole of the blades would be: a pass holding a share of them
         p["u_depth_alpha"].value = 1.0 - 0.5 ** self.band[2]
         p["u_band"].value = (self.band[0], min(self.band[1], 1e9), self.band[2])
+        # the blades' depth from the side over the pass's heights (volume.glsl missed_blades)
+        top = min(self.band[1], float(t.height))
+        column = t.canopy.side_column(self.band[0]) - t.canopy.side_column(top)
+        p["u_band_column"].value = max(column, 0.0)
+        p["u_level_colors"].write(np.ascontiguousarray(t.level_colors, np.float32))
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)

@@ -61,6 +61,10 @@ uniform float u_depth_alpha;   // how opaque the ray is where its depth is taken
 // the heights over the ground this pass counts, and the share of their blades (render/frame.py:
 // a grass type standing over another is drawn in parts, among and over the other's grass)
 uniform vec3 u_band;
+// the blades' depth from the side per patch length, summed over this pass's heights
+// (core/canopy.py side_column)
+uniform float u_band_column;
+uniform vec3 u_level_colors[8];  // what a view from each elevation meets (core/canopy.py)
 // the vertical slices, stacked along v: the N across x (u runs along z), then the N across z
 // (u runs along x); one texture for both, so that a step fetches once (render/slices.py)
 uniform sampler2D u_side_color;
@@ -124,9 +128,23 @@ void gather(vec4 c, float ao, float l, vec2 xz) {
     g_alpha += w;
 }
 
+// What the ray's crossings did not count of its run through the grass, added behind all it
+// met. Where the run is short against the slices' spacing (short grass, few slices, steep
+// views: the football's 2 × 1 and 2 × 2 levels at `high` showed half the soil) a ray crosses
+// no slice, and only the horizontal slice covered it, as much as the blades cover from straight
+// above. `missed` of the run: its depth through the pass's heights from the side, the blades'
+// column over tan θ (u_band_column), missed · column / tan θ, in
+// the colour a view from that elevation meets of the vertical slices (`met`, core/canopy.py);
+// `keep`: the share of the blades kept there (the density, the LOD transition).
+vec4 missed_blades(float missed, float keep, float tan_up, vec3 met) {
+    float a = (1.0 - exp(-missed * u_band_column / max(tan_up, 1e-3))) * keep;
+    return vec4(met, 1.0 - pow(max(1.0 - a, 1e-4), u_band.z));
+}
+
 // The horizontal slice as a layer of the volume at height u_floor (render/volume.py): colour,
 // alpha, AO and diffuse factor where the ray crosses it.
-vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l) {
+// `keep`: the share of the texel's blades kept (the density, the LOD transition).
+vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l, out float keep) {
     vec2 at = g.xz - shift;  // where the bent blades crossing the layer stand at rest
     vec2 p = cell_mirror(v_origin + floor(at), v_mirror) * at;
     vec2 uv = vec2(p.x, 1.0 - p.y);
@@ -134,8 +152,9 @@ vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l) {
     vec4 c = textureLod(u_top_color, uv, top_lod);
     vec4 data = textureLod(u_top_data, uv, top_lod);
     float density = u_density * v_density * ground_density(design_uv(v_config, g.xz)).y;
-    c.a *= lod_share(data.a, level_value(u_top_spread, top_lod), density,
+    keep = lod_share(data.a, level_value(u_top_spread, top_lod), density,
                      lod_at(v_lod, distance(u_eye.xz, v_origin + g.xz), v_size));
+    c.a *= keep;
     // The layer stands for the blades below it: AO_blade at their mean height, half the
     // layer's (at the layer's own height the DEM's slopes facing the eye, whose rays it
     // catches since it follows the ground, were drawn brighter than the blades: sward quality
@@ -280,14 +299,28 @@ void main() {
     // (sward bench --suite volume_cost measures the pass).
     vec4 floor_sample = vec4(0.0);
     vec2 floor_ao_l = vec2(0.0);
+    float floor_keep = 0.0;
+    float floor_tan = tan(over_ground);
+    // where the ray enters the grass above the floor (its height over the ground taken as
+    // falling evenly to the floor), and how much of its run from there to the floor the
+    // vertical slices' crossings count (`counted`, in the loop)
+    float entry_h = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
+    float counted = 0.0;
+    // the colour a view from the ray's elevation over the ground meets of the vertical slices
+    // (the table's rows: θ_j = 90° ((j + ½) / 8)², as image.glsl)
+    float met_row = clamp(sqrt(over_ground * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
+    int met_i = int(floor(met_row));
+    vec3 floor_met = mix(u_level_colors[met_i], u_level_colors[min(met_i + 1, 7)],
+                         met_row - float(met_i));
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
         if (all(greaterThanEqual(floor_at.xz, vec2(0.0))) && all(lessThanEqual(floor_at.xz, v_size))) {
             floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
-                                      facing * slope_l, floor_ao_l);
+                                      facing * slope_l, floor_ao_l, floor_keep);
             // in this pass's band of heights, with its share of the blades (u_band)
             bool in_band = u_floor >= u_band.x && u_floor < min(u_band.y, u_height + 1.0);
             floor_sample.a = in_band ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), u_band.z) : 0.0;
+            if (!in_band) floor_keep = 0.0;
         }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
@@ -355,6 +388,7 @@ void main() {
         float in_lo = max(lo, u_band.x), in_hi = min(hi, band_top);
         float share_in = hi - lo > 1e-5 ? max(in_hi - in_lo, 0.0) / (hi - lo) : 1.0;
         float inside = share_in * (to - from) / slab;
+        counted += share_in * (to - from);
         // the stretch's blades are read at the middle of its heights inside the layer, and
         // stand there on the ray: the crossing point itself may lie under the ground (a ray
         // rising up a slope meets the ground within a stretch), and a depth written there hid
@@ -413,6 +447,17 @@ void main() {
     if (floor_lambda < 1e29 && g_alpha <= u_opaque) {  // left the slices before the plane
         gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
         if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
+    }
+    if (floor_keep > 0.0 && g_alpha <= u_opaque) {
+        // the run through the grass: from where the ray's height over the ground (falling
+        // evenly from `entry_h` to the floor at floor_at) reaches the top of the pass's
+        // heights to where it reaches the ground or leaves the cuboid
+        float fall = (entry_h - u_floor) / max(distance(e, floor_at), 1e-6);
+        float start = entry_h > band_top ? (entry_h - band_top) / max(fall, 1e-6) : 0.0;
+        float run = min(entry_h / max(fall, 1e-6), exit_lambda) - start;
+        float missed = run > 1e-6 ? clamp(1.0 - counted / run, 0.0, 1.0) : 0.0;
+        gather(missed_blades(missed, floor_keep, floor_tan, floor_met), floor_ao_l.x, floor_ao_l.y,
+               floor_at.xz);
     }
     if (g_alpha < 0.01) discard;
     vec2 at = g_at / g_alpha;

@@ -92,3 +92,18 @@ def test_a_level_rays_column_depth_sums_the_rows_above_a_height():
     assert np.isclose(canopy.side_column(0.25), 0.75 * depth)
     assert np.isclose(canopy.side_column(0.375), 0.625 * depth)
     assert canopy.side_column(1.0) == 0.0
+
+
+def test_the_blades_depth_from_the_side_is_their_area_seen_along_a_level_ray():
+    """core/canopy.py BladeSides: an upright square 0.1 on a side facing x, its texture whole
+    (v = 0), gives a level ray its area times 2/π (|cos| averaged over the directions around
+    it); a flat one lying on the ground gives none; the rows above half its height, half."""
+    from core.canopy import BladeSides
+
+    upright = np.array([(0, 0, 0), (0, 0, 0.1), (0, 0.1, 0), (0, 0.1, 0.1)], np.float64)
+    flat = np.array([(0, 0, 0), (0.1, 0, 0), (0, 0, 0.1), (0.1, 0, 0.1)], np.float64)
+    quads = np.array([[0, 1, 2], [2, 1, 3], [4, 5, 6], [6, 5, 7]])
+    sides = BladeSides.of(np.concatenate([upright, flat]), np.zeros((8, 2)), quads)
+    assert np.isclose(sides.column(), 0.01 * 2 / np.pi)
+    assert np.isclose(sides.column(0.05), 0.5 * 0.01 * 2 / np.pi)  # one of its two triangles
+    assert sides.column(0.2) == 0.0

@@ -288,3 +288,26 @@ def test_the_footballs_touchlines_run_unbroken_to_the_far_end(headless):
             judged.append(gaps)
     assert len(judged) == 2  # both lines show along most of their length
     assert max(judged) < 0.1, judged
+
+
+@pytest.mark.parametrize("camera", ["default", "grazing"])
+def test_short_dense_turf_covers_the_ground_in_the_volume_as_its_blades_do(headless, camera):
+    """The football's turf (5000 blades 0.05-0.08 tall) on the patch grid, drawn as one volume
+    level of one slice a direction (as the football's 2 × 1 level): a ray crosses its
+    short layer in less than a slice spacing and mostly meets no vertical slice, only the
+    horizontal one, which covers what the blades cover from straight above (0.34). Reaching it,
+    the ray is made as opaque as the blades are from its elevation, counted on the blades'
+    triangles (core/canopy.py BladeSides: a slice's mean alpha saturates there); the football's
+    near half at `high` showed half its soil before."""
+    import dataclasses
+
+    from core.lod import LodConfig, LodLevel
+
+    turf = get_scene("football").params
+    scene = get_scene("patch-grid")
+    one_slice = LodConfig((LodLevel("volume", 0.0, None, slices=1, macro=1),))
+    scene = dataclasses.replace(scene, params=turf.replace(seed=scene.params.seed), lod=one_slice)
+    grey, ground = _cover(headless, scene, "lod", camera)
+    assert ground.mean() > 0.2
+    diff = grey["lod"][ground].mean() - grey["geometry"][ground].mean()
+    assert abs(diff) < 0.1, diff
