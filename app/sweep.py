@@ -9,6 +9,8 @@ frame (core/quality.py has the figures):
 - where the all-geometry reference is affordable (the meadow, the bench, the patch grid): each
   representation's region mean colour against the reference's same region, and the hand-over
   steps against the reference's steps across the same blocks;
+- each representation's pattern at the scale of stripes against the all-geometry frame's over
+  the same region (checked on the DEM, whose slopes showed stripes);
 - the football: how continuous each touchline is (core/quality.py line_gaps), where it shows;
 - the meadow with the wind: how much the image-based region changes between two moments, as a
   share of what the volume region changes.
@@ -30,7 +32,14 @@ from core.camera import Camera
 from core.document import Document
 from core.image_diff import to_float
 from core.params import PRESETS
-from core.quality import bare_blocks, level_steps, line_gaps, screen_path, technique_regions
+from core.quality import (
+    bare_blocks,
+    level_steps,
+    line_gaps,
+    screen_path,
+    stripe_contrast,
+    technique_regions,
+)
 
 MAGENTA = (1.0, 0.0, 1.0)
 DEM_SCALE = 6.0  # world units for white of the stand-in DEM (docs/far-field.md)
@@ -50,6 +59,7 @@ LIMITS = {
     "steps_over_reference": 1.5,  # meadow, bench: across the same blocks as all-geometry
     "wind_image_share": 1.0 / 3.0,  # the image-based region moves ≥ a third of the volume's
     "touchline_gaps": 0.1,  # football: a touchline's points in gaps, where it shows
+    "stripe_contrast": 1.5,  # the DEM: pattern at stripes' scale over all-geometry's
 }
 
 
@@ -155,6 +165,9 @@ def case_figures(case: Case, size: tuple[int, int], wind: bool) -> tuple[dict, n
             reference, _ = frames.run.reference(camera)
             regions = technique_regions(shaded, techniques, by_level)
             row["region_colour"] = region_colours(shaded, reference, regions)
+            row["stripes"] = {
+                name: stripe_contrast(shaded, reference, mask) for name, mask in regions.items()
+            }
         else:
             row["reference"] = f"not drawn: {triangles:,} triangles, ~{estimate:.0f} s"
         steps = level_steps(shaded, techniques, colors, reference)
@@ -223,6 +236,10 @@ def _checks(case: Case, row: dict) -> dict:
             "steps_over_reference", steps.get("across_over_reference"),
             LIMITS["steps_over_reference"],
         )  # fmt: skip
+    if case.dem:
+        stripes = row.get("stripes", {})
+        for name in ("volume", "image"):
+            check(f"stripe_contrast_{name}", stripes.get(name), LIMITS["stripe_contrast"])
     share = row.get("wind", {}).get("image_over_volume")
     if share is not None:
         # at least a third: the check holds where the share reaches it
@@ -297,6 +314,9 @@ def report(result: dict) -> str:
             parts.append(
                 "colour " + " ".join(f"{name[0]} {value:.3f}" for name, value in colours.items())
             )
+        stripes = {k: v for k, v in row.get("stripes", {}).items() if v is not None}
+        if stripes:
+            parts.append("stripes " + " ".join(f"{k[0]} {v:.2f}" for k, v in stripes.items()))
         if row.get("touchlines"):
             gaps = [line["gaps"] for line in row["touchlines"]]
             parts.append(

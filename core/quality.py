@@ -320,3 +320,23 @@ def line_gaps(image: np.ndarray, points: np.ndarray, across: np.ndarray, window:
         "gaps": float(gaps.sum() / max(shown.sum(), 1)),
         "shown": float(shown.mean()),
     }
+
+
+def stripe_contrast(lod: np.ndarray, reference: np.ndarray, mask: np.ndarray) -> float | None:
+    """How much pattern a frame shows at the scale of stripes (2 to 8 pixels) against the
+    reference, over `mask`: the standard deviation of the luminance of 2 × 2 blocks less that
+    of the 8 × 8 block they lie in, the frame's over the reference's, where whole 8 × 8 blocks
+    lie in the mask (a region's own edge is no stripe). Regular stripes across a slope raise
+    it; a representation smoother than the blades lowers it. None where too few blocks."""
+
+    def band(image: np.ndarray) -> np.ndarray:
+        fine = downsample(image, 2).mean(axis=-1)
+        coarse = downsample(image, 8).mean(axis=-1).repeat(4, axis=0).repeat(4, axis=1)
+        return fine[: coarse.shape[0], : coarse.shape[1]] - coarse
+
+    cover = downsample(np.repeat(mask[..., None].astype(np.float32), 3, axis=-1), 8)[..., 0]
+    inside = (cover > 0.99).repeat(4, axis=0).repeat(4, axis=1)
+    if inside.sum() < 64:
+        return None
+    a, b = band(lod)[inside], band(reference)[inside]
+    return float(a.std() / max(float(b.std()), 1e-6))

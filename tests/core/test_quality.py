@@ -167,3 +167,20 @@ def test_a_dashed_line_has_gaps_and_a_fading_one_has_none():
     steps = np.linalg.norm(np.diff(xy, axis=0), axis=1)
     assert len(xy) > 20 and np.all(steps >= 1.0) and np.all(steps < 1.5)
     assert np.allclose(np.abs(normal[:, 1]), 1.0, atol=1e-3)  # across a level line: vertical
+
+
+def test_stripes_across_a_region_raise_its_stripe_contrast():
+    """core/quality.py stripe_contrast: a frame whose region shows regular stripes 6 pixels
+    apart over the reference's fine noise has more pattern at that scale than the reference;
+    the same region smooth has less; outside the mask nothing counts."""
+    from core.quality import stripe_contrast
+
+    rng = np.random.default_rng(1)
+    reference = 0.4 + 0.05 * rng.standard_normal((96, 128, 3))
+    smooth = np.full_like(reference, 0.4)
+    striped = smooth + 0.08 * (np.arange(128) // 3 % 2)[None, :, None]
+    mask = np.zeros((96, 128), bool)
+    mask[16:80, 16:112] = True
+    assert stripe_contrast(striped, reference, mask) > 1.5
+    assert stripe_contrast(smooth, reference, mask) < 0.2
+    assert stripe_contrast(striped, reference, np.zeros_like(mask)) is None
