@@ -79,9 +79,9 @@ class BladeSides:
     """What a level ray meets of a patch's blades, from their triangles: each triangle gives a
     level ray crossing the patch the optical depth of its area seen along the ray, averaged over
     the horizontal directions (2/π |n_xz| of it), times the share of it the blade's texture
-    keeps. A slice's mean alpha saturates where a slab's blades overlap (the football's turf: a
-    row of a one-slice family 0.99 opaque, depth 4.8 per patch length where its blades give
-    about 30), so the depth from the side is counted on the blades themselves."""
+    keeps. A slice's mean alpha saturates where a slab's blades overlap (dense turf in few
+    slices: a row all but opaque says little of how many blades stand in it), so the depth
+    from the side is counted on the blades themselves."""
 
     heights: np.ndarray  # the triangles' centroid heights, rising
     above: np.ndarray  # the depth of the triangles from each of those up

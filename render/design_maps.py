@@ -130,7 +130,7 @@ class DesignMapTextures:
         if COLOR in self.pending:
             x, y, w, h = self.pending[COLOR]
             self.far.write(self._far_texels((x, y, w, h)), viewport=(x, y, 0, w, h, 1))
-            self.far.build_mipmaps()  # the football's map: a few ms on llvmpipe
+            self.far.build_mipmaps()
         rect = None
         for i in (DENSITY, HEIGHT):
             if i in self.pending:

@@ -130,9 +130,8 @@ void gather(vec4 c, float ao, float l, vec2 xz) {
 
 // What the ray's crossings did not count of its run through the grass, added behind all it
 // met. Where the run is short against the slices' spacing (short grass, few slices, steep
-// views: the football's 2 × 1 and 2 × 2 levels at `high` showed half the soil) a ray crosses
-// no slice, and only the horizontal slice covered it, as much as the blades cover from straight
-// above. `missed` of the run: its depth through the pass's heights from the side, the blades'
+// views) a ray crosses no slice, and the horizontal slice alone covers only what the blades
+// cover from straight above. `missed` of the run: its depth through the pass's heights from the side, the blades'
 // column over tan θ (u_band_column), missed · column / tan θ, in
 // the colour a view from that elevation meets of the vertical slices (`met`, core/canopy.py);
 // `keep`: the share of the blades kept there (the density, the LOD transition).
