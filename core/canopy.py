@@ -3,31 +3,26 @@ all-geometry). The image-based grass is one slice seen from above; far away it i
 level, where the blades hide one another's lower parts, and how deep a view reaches depends on
 its elevation and on how densely the blades stand at each height.
 
-From the vertical slices (rows run upward, row 0 at the ground), per row y of the patch:
-- the share of a level ray stopped crossing one patch, α(y) = 1 − Π_k (1 − ā_k(y)) over the
-  slices k of a family (ā: a slice's mean alpha along the row), so the extinction per patch
-  length is σ(y) = −ln(1 − α(y));
-- the blades' colour there, c(y), alpha-weighted over the slices.
-A ray that enters the grass from above at elevation θ descends Δy while it travels Δy / tan θ,
-so the share it gives row y is w(y) = T(y) · (1 − exp(−σ(y) Δy / tan θ)), T the transmittance
-of the rows above. The table holds, per elevation, Σ w c / Σ w: the colour met; and the same
-mean of AO_blade's height term (shade_met), and the share of a view that reaches a height
-(transmittance), which weighs the blades' diffuse factor (core/facing.py). A slice's mean alpha
-along a row says less than the blades stop there: σ counts GAIN times."""
+Per row y of the patch (rows run upward, row 0 at the ground), what a ray descending through
+the row meets: the blades' area seen from the side, s(y) per patch length of a level ray, and
+seen from above, t(y) per patch area, counted on the blades' triangles (BladeDepths; from the
+vertical slices' rows where the blades are not known). A ray at elevation θ descending Δy
+travels Δy / tan θ across: Campbell's ellipsoidal leaf-angle model gives its optical depth in
+the row as τ(y, θ) = √(t(y)² + (s(y) / tan θ)²) — the blades' side area for level rays, their
+area from above for vertical ones, and for randomly turned blades the two agree. The share the
+ray gives row y is w(y) = T(y) · (1 − exp(−τ(y, θ))), T the transmittance of the rows above,
+and with the slices' colour of the row, c(y) (alpha-weighted over a family's slices), the table
+holds per elevation Σ w c / Σ w: the colour met; and the same mean of AO_blade's height term
+(shade_met), and the share of a view that reaches a height (transmittance), which weighs the
+blades' diffuse factor (core/facing.py)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
-# A ray meets this many times the blades that the slices' mean alpha says: the volume's
-# CROSSING_GAIN (shaders/volume.glsl), measured there against the blades. Here 1.5 gave the
-# best sward quality figures (of 1.0, 1.5, 2.0 over the README cameras: sums of the 11 frame
-# figures 23.2, 22.6, 22.8; the DEM alone prefers 1.0, the flat scenes 2.0); since the slope
-# tables take the ground's rise across the view, 1.75 does (1.5, 1.75, 2.0: 20.54, 20.43,
-# 20.55; the image-based regions at 480 × 270 gain most, the DEM's at 1024 × 768 lose).
-GAIN = 1.75
 ELEVATIONS = 8  # table entries: θ_j = 90° · ((j + 0.5) / 8)², dense near the horizon
 
 
@@ -50,122 +45,210 @@ def _profile(color: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return sigma, c
 
 
-def _met(sigma, c, dy: float, theta: float, other=None) -> tuple[float, np.ndarray]:
-    """A ray entering the rows (σ, c per row, running upward) from above at elevation θ: the
-    share of it their blades stop, and the colour they show it. `other`: the extinction per
-    row of another type's blades standing among them, which stop the ray too and take their
-    own share of it."""
-    run = GAIN * dy / max(np.tan(theta), 1e-3)  # the patch lengths a row's height takes
-    t_own = sigma[::-1] * run  # the rows from the top down
-    t_all = t_own if other is None else t_own + other[::-1] * run
+def _met(depth, c, other=None) -> tuple[float, np.ndarray]:
+    """A ray entering the rows from above, with optical depth `depth` in each row ((rows,),
+    running upward) and their colours c ((rows, k)): the share of it their blades stop, and
+    the colour they show it. `other`: the depth per row of another type's blades standing
+    among them, which stop the ray too and take their own share of it."""
+    t_own = np.asarray(depth, np.float64)[::-1]  # the rows from the top down
+    t_all = t_own if other is None else t_own + np.asarray(other, np.float64)[::-1]
     stopped = np.exp(-np.concatenate([[0.0], np.cumsum(t_all)[:-1]])) * (1.0 - np.exp(-t_all))
     w = stopped * t_own / np.maximum(t_all, 1e-12)  # of what a row stops, these blades' share
     return float(w.sum()), (w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9)
 
 
-def level_view(families: list[np.ndarray], height: float, count: int = ELEVATIONS) -> np.ndarray:
+def level_view(
+    families: list[np.ndarray], height: float, blades: BladeDepths | None = None,
+    count: int = ELEVATIONS,
+) -> np.ndarray:  # fmt: skip
     """(count, 3) colours met at each table elevation, averaged over the families of vertical
     slices ((n, rows, w, 4) colour + alpha arrays, 0 … 1, rows running upward)."""
-    colours = []
-    for color in families:
-        sigma, c = _profile(color)
-        dy = height / color.shape[1]
-        colours.append([_met(sigma, c, dy, theta)[1] for theta in elevations(count)])
-    return np.mean(colours, axis=0).astype(np.float32)
+    return Canopy.of(families, height, blades).level_colors(count)
 
 
 @dataclass(frozen=True)
-class BladeSides:
-    """What a level ray meets of a patch's blades, from their triangles: each triangle gives a
-    level ray crossing the patch the optical depth of its area seen along the ray, averaged over
-    the horizontal directions (2/π |n_xz| of it), times the share of it the blade's texture
-    keeps. A slice's mean alpha saturates where a slab's blades overlap (dense turf in few
-    slices: a row all but opaque says little of how many blades stand in it), so the depth
-    from the side is counted on the blades themselves."""
+class BladeDepths:
+    """What a ray meets of a patch's blades, from their triangles, up from each height: each
+    triangle gives a level ray crossing the patch the optical depth of its area seen along the
+    ray, averaged over the horizontal directions (2/π |n_xz| of it), and a vertical ray its
+    area seen from above (|n_y| of it, per patch area), times the share of it the blade's
+    texture keeps. A slice's mean alpha saturates where a slab's blades overlap (dense turf in
+    few slices: a row all but opaque says little of how many blades stand in it), and vertical
+    slices show nothing of the blades' area from above, so both are counted on the blades."""
 
     heights: np.ndarray  # the triangles' centroid heights, rising
-    above: np.ndarray  # the depth of the triangles from each of those up
+    side: np.ndarray  # the side depth of the triangles from each of those up
+    top: np.ndarray  # their depth from above, the same way
 
     @classmethod
-    def of(cls, positions: np.ndarray, uv: np.ndarray, triangles: np.ndarray) -> BladeSides:
+    def of(cls, positions: np.ndarray, uv: np.ndarray, triangles: np.ndarray) -> BladeDepths:
         """From a patch's vertex positions (m, 3), uv (m, 2) and triangle indices (t, 3)."""
         from core.patch import blade_fill
 
         p = np.asarray(positions, np.float64)
         a, b, c = p[triangles[:, 0]], p[triangles[:, 1]], p[triangles[:, 2]]
         cross = np.cross(b - a, c - a)  # twice the area along the normal
-        seen = 0.5 * np.hypot(cross[:, 0], cross[:, 2]) * (2.0 / np.pi)
-        depth = seen * blade_fill(np.asarray(uv)[triangles, 1].mean(axis=1))
-        order = np.argsort((a[:, 1] + b[:, 1] + c[:, 1]) / 3.0)
-        heights = ((a[:, 1] + b[:, 1] + c[:, 1]) / 3.0)[order]
-        return cls(heights, np.cumsum(depth[order][::-1])[::-1])
+        fill = blade_fill(np.asarray(uv)[triangles, 1].mean(axis=1))
+        side = 0.5 * np.hypot(cross[:, 0], cross[:, 2]) * (2.0 / np.pi) * fill
+        top = 0.5 * np.abs(cross[:, 1]) * fill
+        centroid = (a[:, 1] + b[:, 1] + c[:, 1]) / 3.0
+        order = np.argsort(centroid)
+
+        def up(depth: np.ndarray) -> np.ndarray:
+            return np.cumsum(depth[order][::-1])[::-1]
+
+        return cls(centroid[order], up(side), up(top))
+
+    def _from(self, cumulative: np.ndarray, above) -> np.ndarray:
+        i = np.searchsorted(self.heights, np.asarray(above, np.float64))
+        return np.where(i < len(cumulative), cumulative[np.minimum(i, len(cumulative) - 1)], 0.0)
 
     def column(self, above: float = 0.0) -> float:
         """The depth of the blades from height `above` up, per patch length of a level ray."""
-        i = int(np.searchsorted(self.heights, above))
-        return float(self.above[i]) if i < len(self.above) else 0.0
+        return float(self._from(self.side, above))
+
+    def rows(self, height: float, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """Side and top depth of each of `count` rows over 0 … height ((count,) each, rising);
+        the highest row takes any blade above `height`."""
+        bounds = np.linspace(0.0, height, count + 1)
+        side, top = self._from(self.side, bounds), self._from(self.top, bounds)
+        side[-1] = top[-1] = 0.0
+        return side[:-1] - side[1:], top[:-1] - top[1:]
 
 
 @dataclass(frozen=True)
 class Canopy:
-    """The rows' extinction and colour of each family of a patch's vertical slices (what the
-    tables here are computed from), kept small enough to keep beside the slices' textures."""
+    """The rows' extinction and colour of each family of a patch's vertical slices, and the
+    blades' own depths where known (what the tables here are computed from), kept small enough
+    to keep beside the slices' textures."""
 
     profiles: tuple[tuple[np.ndarray, np.ndarray], ...]  # per family: σ (rows,), c (rows, 3)
     height: float
-    sides: BladeSides | None = None  # the blades' own depth from the side, where known
+    blades: BladeDepths | None = None  # the blades' own depths, where known
+    # what the top view shows: per row of heights (rising, over 0 … height), the share of its
+    # cover there (its alpha-weighted histogram of the heights it shows)
+    top_heights: np.ndarray | None = None
 
     @classmethod
     def of(
-        cls, families: list[np.ndarray], height: float, sides: BladeSides | None = None
+        cls,
+        families: list[np.ndarray],
+        height: float,
+        blades: BladeDepths | None = None,
+        top: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> Canopy:
-        return cls(tuple(_profile(color) for color in families), float(height), sides)
+        """`top`: the top view's alpha and the heights its texels show (equal shapes)."""
+        profiles = tuple(_profile(color) for color in families)
+        shown = None
+        if top is not None:
+            alpha, heights = (np.asarray(a, np.float64).ravel() for a in top)
+            rows = len(profiles[0][0])
+            shown, _ = np.histogram(heights, rows, (0.0, float(height)), weights=alpha)
+            shown = shown / max(float(shown.sum()), 1e-12)
+        return cls(profiles, float(height), blades, shown)
 
-    def sigma_at(self, y: np.ndarray) -> np.ndarray:
-        """Extinction per patch length at heights y (world units), the families' mean; 0 above
-        the grass."""
+    def top_shade(self, ao_height: float) -> float:
+        """The mean of 1 − smoothstep(0, B_height, y) over the heights y the top view shows
+        (weighted by its cover): AO_blade (eq. 6.11) of what it shows is 1 − B_impact ·
+        density · this. Without a top view, that of a view from straight above."""
+        if self.top_heights is None:
+            return float(self.shade_met(ao_height)[-1])
+        y = (np.arange(self.rows) + 0.5) * self.dy
+        t = np.clip(y / max(ao_height, 1e-6), 0.0, 1.0)
+        return float((self.top_heights * (1.0 - t * t * (3.0 - 2.0 * t))).sum())
+
+    @property
+    def rows(self) -> int:
+        return len(self.profiles[0][0])
+
+    @property
+    def dy(self) -> float:
+        return self.height / self.rows
+
+    @cached_property
+    def _parts(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each row's depth from the side (per patch length of a level ray) and from above:
+        the blades', else the slices' (the families' mean; nothing from above)."""
+        if self.blades is not None:
+            return self.blades.rows(self.height, self.rows)
         sigma = np.mean([profile[0] for profile in self.profiles], axis=0)
-        rows = np.floor(np.asarray(y) / self.height * len(sigma)).astype(np.int64)
-        inside = (rows >= 0) & (rows < len(sigma))
-        return np.where(inside, sigma[np.clip(rows, 0, len(sigma) - 1)], 0.0)
+        return sigma * self.dy, np.zeros_like(sigma)
+
+    def row_depths(self, theta, top: bool = True) -> np.ndarray:
+        """The optical depth a ray at elevation θ (radians; (m,) or a scalar) meets descending
+        through each row: (rows, m) or (rows,). `top`: with the blades' area seen from above
+        (Campbell's ellipse); else their side alone."""
+        side, up = self._parts
+        tan = np.maximum(np.tan(np.asarray(theta, np.float64)), 1e-3)
+        across = side.reshape(-1, *([1] * tan.ndim)) / tan
+        if not top:
+            return across
+        return np.sqrt(up.reshape(across.shape[0], *([1] * tan.ndim)) ** 2 + across**2)
+
+    def depth_at(self, y: np.ndarray, theta: float, top: bool = True) -> np.ndarray:
+        """The optical depth per unit of height of these blades at heights y (world units) for
+        a ray at elevation θ (`top` as in row_depths); 0 above the grass."""
+        rows = np.floor(np.asarray(y) / self.dy).astype(np.int64)
+        inside = (rows >= 0) & (rows < self.rows)
+        per = self.row_depths(theta, top) / self.dy
+        return np.where(inside, per[np.clip(rows, 0, self.rows - 1)], 0.0)
 
     def transmittance(self, y: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The share of a view from elevation θ (radians, (m,)) that reaches height y (world
-        units, (k,)) through the rows above it: (k, m), the families' mean extinction, half of
-        y's own row counted."""
-        return self.reach(np.asarray(y)[:, None], np.asarray(theta)[None, :])
+        units, (k,)) through the rows above it: (k, m), half of y's own row counted."""
+        through = np.exp(-self.cumulative(np.asarray(theta)))  # (rows + 1, m)
+        return through[self.row_index(np.asarray(y))]
 
-    def reach(self, y: np.ndarray, theta: np.ndarray) -> np.ndarray:
-        """The same, element by element of y and θ broadcast together."""
-        depths, index = self.depths(y)
-        return np.exp(-depths[index] / np.maximum(np.tan(np.asarray(theta)), 1e-3))
+    def cumulative(self, theta: np.ndarray) -> np.ndarray:
+        """((rows + 1, m)) the optical depth from the middle of each row to the top for rays
+        at the elevations θ ((m,)), the last 0: above the grass. transmittance(y, θ) is
+        exp(−cumulative(θ))[row_index(y)]; a caller with many y per θ takes the exponential
+        once per value and θ."""
+        depth = self.row_depths(np.atleast_1d(theta))  # (rows, m)
+        above = np.cumsum(depth[::-1], axis=0)[::-1] - depth  # the rows above each
+        return np.concatenate([above + 0.5 * depth, np.zeros((1, depth.shape[1]))])
 
-    def depths(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """reach's optical depths: the few values there are ((rows + 1,), the last 0: above the
-        grass) and each y's index into them (y's shape); reach(y, θ) = exp(−depth / tan θ), so
-        a caller with many y per θ takes the exponential once per value and θ."""
-        sigma = GAIN * np.mean([profile[0] for profile in self.profiles], axis=0)
-        dy = self.height / len(sigma)
-        above = np.concatenate([np.cumsum(sigma[::-1])[::-1], [0.0]])  # rows r … top
-        values = np.append((above[1:] + 0.5 * sigma) * dy, 0.0)
+    def row_index(self, y: np.ndarray) -> np.ndarray:
+        """Each height's row (y's shape), `rows` above the grass (cumulative's last entry)."""
         y = np.asarray(y)
-        rows = np.clip(np.floor(y / dy).astype(np.int64), 0, len(sigma) - 1)
-        return values, np.where(y >= self.height, len(sigma), rows)
+        rows = np.clip(np.floor(y / self.dy).astype(np.int64), 0, self.rows - 1)
+        return np.where(y >= self.height, self.rows, rows)
 
     def side_column(self, above: float = 0.0) -> float:
         """The optical depth of the grass a level ray meets per patch length, summed over the
-        heights from `above` (world units) to the top: Σ σ(y) dy. From the blades themselves
-        where known (`sides`), else from the rows of the slices (the families' mean, as their
-        mean alpha says it, no GAIN). A ray at elevation θ crosses those heights over 1 / tan θ
-        patch lengths for each unit of height, so its depth through them from the side is this
-        / tan θ (the image-based grass's coverage, shaders/image.glsl; the volume's floor)."""
-        if self.sides is not None:
-            return self.sides.column(above)
-        sigma = np.mean([profile[0] for profile in self.profiles], axis=0)
-        dy = self.height / len(sigma)
-        lows = np.arange(len(sigma)) * dy
-        part = np.clip((lows + dy - above) / dy, 0.0, 1.0)  # of each row, the share above
-        return float((sigma * part).sum() * dy)
+        heights from `above` (world units) to the top: Σ s(y). From the blades themselves
+        where known, else from the rows of the slices (the families' mean, as their mean alpha
+        says it). A ray at elevation θ crosses those heights over 1 / tan θ patch lengths for
+        each unit of height, so its depth through them from the side is this / tan θ (the
+        image-based grass's coverage, shaders/image.glsl; the volume's floor)."""
+        if self.blades is not None:
+            return self.blades.column(above)
+        side, _ = self._parts
+        lows = np.arange(self.rows) * self.dy
+        part = np.clip((lows + self.dy - above) / self.dy, 0.0, 1.0)  # of each row, the share above
+        return float((side * part).sum())
+
+    def _met_each(self, values, theta: float, under: Canopy | None, top: bool = True):
+        """_met at elevation θ for each family with its `values(c)` per row (`top` as in
+        row_depths)."""
+        depth = self.row_depths(theta, top)
+        y = (np.arange(self.rows) + 0.5) * self.dy
+        other = None if under is None else under.depth_at(y, theta, top) * self.dy
+        return [_met(depth, values(c), other) for _sigma, c in self.profiles]
+
+    def level_colors(self, count: int = ELEVATIONS, top: bool = True) -> np.ndarray:
+        """(count, 3) colours met at each table elevation, the families' mean (`top` as in
+        row_depths)."""
+        return np.mean(
+            [[m[1] for m in self._met_each(lambda c: c, t, None, top)] for t in elevations(count)],
+            axis=1,
+        ).astype(np.float32)
+
+    @cached_property
+    def side_colors(self) -> np.ndarray:
+        """level_colors of what a ray meets of the blades' side alone: what the volume's
+        crossings miss of its path (shaders/volume.glsl missed_blades) is their side."""
+        return self.level_colors(top=False)
 
     def shade_met(
         self, ao_height: float, under: Canopy | None = None, count: int = ELEVATIONS
@@ -175,16 +258,14 @@ class Canopy:
         of what the view meets is 1 − B_impact · density · this ((count,), the families' mean).
         `under`: another type's blades standing among these (as in `over`), which take the
         rays they stop."""
-        shade = []
-        for sigma, _c in self.profiles:
-            dy = self.height / len(sigma)
-            y = (np.arange(len(sigma)) + 0.5) * dy  # rows running upward
-            t = np.clip(y / max(ao_height, 1e-6), 0.0, 1.0)
-            dark = (1.0 - t * t * (3.0 - 2.0 * t))[:, None]
-            other = None if under is None else under.sigma_at(y)
-            shade.append([float(_met(sigma, dark, dy, theta, other)[1][0])
-                          for theta in elevations(count)])  # fmt: skip
-        return np.mean(shade, axis=0).astype(np.float32)
+        y = (np.arange(self.rows) + 0.5) * self.dy
+        t = np.clip(y / max(ao_height, 1e-6), 0.0, 1.0)
+        dark = (1.0 - t * t * (3.0 - 2.0 * t))[:, None]
+        return np.array(
+            [np.mean([m[1][0] for m in self._met_each(lambda _c: dark, theta, under)])
+             for theta in elevations(count)],
+            np.float32,
+        )  # fmt: skip
 
     def over(self, under: Canopy, count: int = ELEVATIONS) -> tuple[np.ndarray, np.ndarray]:
         """Of this grass standing in another type's (`under`, the shorter): per table
@@ -192,14 +273,8 @@ class Canopy:
         type's blades standing among them where both reach, and the colour they show it
         ((count,), (count, 3)). What the other type stops, or nothing, the other type's
         slice beneath draws."""
-        shares, colours = [], []
-        for sigma, c in self.profiles:
-            dy = self.height / len(sigma)
-            other = under.sigma_at((np.arange(len(sigma)) + 0.5) * dy)  # rows running upward
-            met = [_met(sigma, c, dy, theta, other) for theta in elevations(count)]
-            shares.append([m[0] for m in met])
-            colours.append([m[1] for m in met])
+        met = [self._met_each(lambda c: c, theta, under) for theta in elevations(count)]
         return (
-            np.mean(shares, axis=0).astype(np.float32),
-            np.mean(colours, axis=0).astype(np.float32),
+            np.array([np.mean([m[0] for m in each]) for each in met], np.float32),
+            np.array([np.mean([m[1] for m in each], axis=0) for each in met], np.float32),
         )

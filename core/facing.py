@@ -184,7 +184,7 @@ def slope_means(
     """The blades' diffuse factor seen from directions `to_eye` ((m, 3)) at elevations θ over
     the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape.
     Both weigh each vertex by |n · e| and by the share of a view at θ that reaches its height
-    (Canopy.reach): the sheared blade (as the slices are) at its own height y, the upright one
+    (Canopy.transmittance): the sheared blade (as the slices are) at its own height y, the upright one
     at y − g · (its offset from the root along the view) − c · (its offset to the viewer's
     right), g = tan θ − tan e the ground's rise per unit run away from the eye, c its rise to
     the right (`across`, θ's shape; 0 if not given), and not at all where that is below the
@@ -219,11 +219,10 @@ def slope_means(
         return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
 
     def reach(heights: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """Canopy.reach of (k, m) heights at the m elevations t: the exponential once per
+        """Canopy.transmittance of (k, m) heights at the m elevations t: the exponential once per
         depth and direction, then looked up (with exp over every element a build took 2 s)."""
-        depths, at = canopy.depths(heights)
-        through = np.exp(-depths[:, None] / np.maximum(np.tan(t), 1e-3)[None, :])
-        return np.take_along_axis(through, np.broadcast_to(at, heights.shape), axis=0)
+        through = np.exp(-canopy.cumulative(t))
+        return np.take_along_axis(through, canopy.row_index(heights), axis=0)
 
     thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
     rises = np.zeros(thetas.shape) if across is None else np.broadcast_to(across, thetas.shape)

@@ -1,16 +1,16 @@
 """Mip maps for semi-transparent slices (thesis 4.2.2-4.2.3), on float arrays.
 
-OpenGL's box filter averages alpha, so thin blades fade away in the reduced levels (Fig. 4.8).
-Instead each level takes
-- colour weighted by alpha (eqs. 4.9-4.10),
-- alpha rescaled so that the share of texels passing the alpha test equals the base level's
-  (eqs. 4.11-4.15, Castaño 2010). The thesis takes the max of the four texels (eq. 4.12) before
-  rescaling; on thin blades the max saturates within three levels (every texel 1, measured in
-  tests/core/test_mipmaps.py) and no rescale can bring the coverage back. So, as Castaño does,
-  the pyramid carries the plain average of alpha — the true share of the footprint that is
-  covered — and the rescale turns that back into the base level's coverage,
-and after the pyramid is built, colour bleeding fills the transparent part of every texel with
-the colour of the next level (eq. 4.16), from the smallest level down, so bilinear filtering at
+Each level takes colour weighted by alpha (eqs. 4.9-4.10) and the plain mean of alpha: the
+share of the texel's footprint the blades cover. The thesis rescales alpha so that the share of
+texels passing an alpha test stays the base level's (eqs. 4.11-4.15, Fig. 4.8: thin blades fade
+away in a box-filtered level drawn with an alpha test). Sward draws no slice with an alpha test:
+the volume composites a texel's alpha as the opacity of the blades in it, and the image-based
+grass covers that share of the pixel's samples (shaders/_coverage.glsl); for both, alpha must
+stay the covered share, which the rescale changes (a dense top view, whose texels all pass the
+test far away, was drawn with a third less cover than its blades).
+
+After the pyramid is built, colour bleeding fills the transparent part of every texel with the
+colour of the next level (eq. 4.16), from the smallest level down, so bilinear filtering at
 blade edges mixes in blade colour instead of the background (no grey halo, Fig. 4.9).
 
 Images are float32 arrays (h, w, 4) with values in 0 … 1, rows first.
@@ -61,24 +61,16 @@ def alpha_weighted_reduce(image: np.ndarray, alpha: str = "mean") -> np.ndarray:
     return out
 
 
-def coverage(alpha: np.ndarray, alpha_ref: float) -> float:
-    """Share of texels passing the alpha test a > a_r (eq. 4.11)."""
-    return float(np.mean(alpha > alpha_ref))
+def build_mips(base: np.ndarray) -> list[np.ndarray]:
+    """The full pyramid down to 1 × 1, alpha the covered share, then colour bleeding."""
+    return [level[0] for level in build_mips_stack(np.asarray(base)[None])]
 
 
-def build_mips(base: np.ndarray, alpha_ref: float = 0.5) -> list[np.ndarray]:
-    """The full pyramid down to 1 × 1, coverage-preserving alpha, then colour bleeding."""
-    return [level[0] for level in build_mips_stack(np.asarray(base)[None], alpha_ref)]
-
-
-def build_mips_stack(
-    stack: np.ndarray, alpha_ref: float = 0.5, upper_first: bool = False
-) -> list[np.ndarray]:
+def build_mips_stack(stack: np.ndarray, upper_first: bool = False) -> list[np.ndarray]:
     """build_mips of every image of an (n, h, w, 4) stack: levels of shape (n, h_k, w_k, 4).
     Each step is one compiled pass over the stack (numba; the numpy version, a dozen array
     passes per level, took 65-85 ms of a 2 × 8 conversion)."""
     base = np.ascontiguousarray(stack, dtype=np.float32)
-    targets = np.array([coverage(b[..., 3], alpha_ref) for b in base], np.float64)
     levels = [base.copy()]
     while levels[-1].shape[1] > 1 or levels[-1].shape[2] > 1:
         nxt = np.empty((*_next_size(levels[-1]), 4), np.float32)
@@ -97,9 +89,6 @@ def build_mips_stack(
             _weighted_into(src[..., 3:], np.ones_like(weight), mean_alpha, nxt[..., 3])
             nxt[..., 3] = mean_alpha[..., 0]
         levels.append(nxt)
-    # the reductions ran on the unscaled alpha (the true covered share); now rescale each level
-    for level in levels[1:]:
-        _rescale_alpha(level, targets, np.float32(alpha_ref))
     return _bleed_stack(levels)
 
 
@@ -129,31 +118,6 @@ def _next_size(stack: np.ndarray) -> tuple[int, int, int]:
 def _pairs(size, i):
     """The two texels of the level above under texel i (a side of 1 repeats its texel)."""
     return (2 * i, 2 * i + 1) if size > 1 else (0, 0)
-
-
-@numba.njit(cache=True)
-def _rescale_alpha(level, targets, alpha_ref):
-    """Each image's alpha times scale = a_r / a'_r, clipped to 0 … 1 (eqs. 4.13-4.14): a'_r
-    is the test value that lets the share of texels closest to the image's `target` pass,
-    halfway between two alpha values (a texel passes where scale · a > a_r ⟺ a > a'_r)."""
-    zero, one, half = np.float32(0.0), np.float32(1.0), np.float32(0.5)
-    for k in range(level.shape[0]):
-        flat = np.sort(level[k, :, :, 3].ravel())
-        size, target = flat.size, targets[k]
-        scale, best, prev = one, np.inf, zero
-        if target > 0.0:
-            for i in range(size):  # each distinct alpha > 0, and the share at or above it
-                v = flat[i]
-                if v <= 0.0 or (i > 0 and flat[i - 1] == v):
-                    continue
-                miss = abs(1.0 - i / size - target)
-                if miss < best:  # the first of equal misses, as argmin
-                    best = miss
-                    scale = alpha_ref / (half * (prev + v))
-                prev = v
-        for y in range(level.shape[1]):
-            for x in range(level.shape[2]):
-                level[k, y, x, 3] = min(max(level[k, y, x, 3] * scale, zero), one)
 
 
 @numba.njit(cache=True)
@@ -220,12 +184,12 @@ def _weighted_into(src, weight, dst, dst_weight):
 
 
 def stacked_slice_mips(
-    slices: np.ndarray, levels: int, alpha_ref: float = 0.5, upper_first: bool = False
+    slices: np.ndarray, levels: int, upper_first: bool = False
 ) -> list[np.ndarray]:
     """Per-slice mip chains of (n, h, w, 4) colour slices, each level stacked along rows into one
     (n·h_k, w_k, 4) image, for `levels` levels (at most log2(h) + 1 so no slice shrinks below a
     row)."""
-    stacked = build_mips_stack(slices, alpha_ref, upper_first)[:levels]
+    stacked = build_mips_stack(slices, upper_first)[:levels]
     return [level.reshape(-1, *level.shape[2:]) for level in stacked]
 
 

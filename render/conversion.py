@@ -8,7 +8,8 @@ square are captured and the slices tile seamlessly like the geometry does; but e
 only the blades that reach it (one run of indices per slab and tile offset), not the whole patch
 nine times, which made conversion cost 9× the patch's vertices per slice.
 
-Every slice keeps: albedo + alpha, patch-space normal and density threshold. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
+Every slice keeps: albedo + alpha, patch-space normal, density threshold and the height of what
+each texel shows. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
 z = 0 for the horizontal slice.
 """
 
@@ -21,7 +22,7 @@ import moderngl
 import numpy as np
 
 from core.camera import look_at, orthographic
-from core.canopy import BladeSides
+from core.canopy import BladeDepths
 from core.grid import INSTANCE_DTYPE
 from core.lighting import Lighting
 from core.patch import GrassPatch
@@ -37,6 +38,7 @@ class SliceLayers:
     color: np.ndarray  # (n, h, w, 4) float32, albedo + alpha
     normal: np.ndarray  # (n, h, w, 3) float32, unit normals in patch space
     threshold: np.ndarray  # (n, h, w) float32, 0 where empty
+    height: np.ndarray  # (n, h, w) float32: the height over the ground of what a texel shows
 
 
 @dataclass
@@ -45,7 +47,7 @@ class SlicedPatch:
     z: SliceLayers  # slabs across z; u runs along x
     top: SliceLayers  # one slice, n = 1
     height: float
-    sides: BladeSides | None = None  # the blades' depth from the side (core/canopy.py)
+    blades: BladeDepths | None = None  # the blades' depths from the side and above (core/canopy.py)
 
 
 def _tiles(offsets) -> np.ndarray:
@@ -145,10 +147,10 @@ class PatchConverter:
         top = self._read((top_size, top_size))
         yield total, total
         top = SliceLayers(*(a[None] for a in top))
-        sides = BladeSides.of(
+        blades = BladeDepths.of(
             patch.vertices["position"], patch.vertices["uv"], patch.indices.reshape(-1, 3)
         )
-        return SlicedPatch(x=x, z=z, top=top, height=h, sides=sides)
+        return SlicedPatch(x=x, z=z, top=top, height=h, blades=blades)
 
     @staticmethod
     def _plan(runs: _BladeRuns, n: int, axis: int, across) -> list[list]:
@@ -193,9 +195,12 @@ class PatchConverter:
             proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
             self._draw(proj @ view, (0, i * h, w, h), plane_lo, plane_hi, plan[i])
             yield done + i + 1, total
-        color, normal, threshold = self._read((w, h * n))
+        color, normal, threshold, height = self._read((w, h * n))
         return SliceLayers(
-            color.reshape(n, h, w, 4), normal.reshape(n, h, w, 3), threshold.reshape(n, h, w)
+            color.reshape(n, h, w, 4),
+            normal.reshape(n, h, w, 3),
+            threshold.reshape(n, h, w),
+            height.reshape(n, h, w),
         )
 
     def _target(self, size: tuple[int, int]) -> tuple[moderngl.Framebuffer, list]:
@@ -228,7 +233,6 @@ class PatchConverter:
         frame = FrameUniforms(view_proj=view_proj, eye=np.zeros(3), lighting=Lighting())
         self.geometry.alpha_ref = self.alpha_ref
         self.geometry.prepare(frame)
-        ctx.disable_direct(0x809E)  # single-sampled targets: no alpha-to-coverage
         ctx.enable_direct(GL_CLIP_DISTANCE0)
         ctx.enable_direct(GL_CLIP_DISTANCE0 + 1)
         for (first, count), tiles in runs:
@@ -242,14 +246,15 @@ class PatchConverter:
         ctx.disable_direct(GL_CLIP_DISTANCE0)
         ctx.disable_direct(GL_CLIP_DISTANCE0 + 1)
 
-    def _read(self, size: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Albedo + alpha, unit normal and threshold of the target, row 0 at the bottom."""
+    def _read(self, size: tuple[int, int]) -> tuple[np.ndarray, ...]:
+        """Albedo + alpha, unit normal, threshold and height of the target, row 0 at the
+        bottom."""
         _, targets = self._target(size)
         w, h = size
         color = np.frombuffer(targets[0].read(), np.float32).reshape(h, w, 4).copy()
         normal = np.frombuffer(targets[1].read(), np.float32).reshape(h, w, 4)[..., :3] * 2 - 1
         data = np.frombuffer(targets[2].read(), np.float32).reshape(h, w, 4)
-        return color, normal, data[..., 0].copy()
+        return color, normal, data[..., 0].copy(), data[..., 1].copy()
 
     def release(self) -> None:
         self._release_target()

@@ -13,8 +13,6 @@ from render.buffers import InstancedRenderer, instance_layout, layout, upload
 from render.shaders import load_program
 from render.uniforms import FrameUniforms
 
-GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
-
 # (attribute, float count) in the order of core.patch.VERTEX_DTYPE.
 VERTEX_ATTRIBUTES = (
     ("in_position", 3),
@@ -87,14 +85,13 @@ class GeometryRenderer(InstancedRenderer):
         self.blade_texture.use(0)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.disable(moderngl.CULL_FACE)
-        self.ctx.enable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
 
     def draw(self) -> None:
         if self.vao is not None and self.instance_count > 0:
             self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
 
     def finalize(self) -> None:
-        self.ctx.disable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
+        """Nothing to undo: the shader sets the samples its fragments cover."""
 
     def release(self) -> None:
         for obj in (self.vao, self.vbo, self.ibo, self.instances, self.blade_texture):

@@ -1,5 +1,6 @@
 """Image-based grass renderer (thesis 5.3): one quad per (macro-)cell, textured with the
-horizontal slice; alpha-to-coverage under MSAA like the geometry. On uneven ground a cell's slice
+horizontal slice; its alpha covers the pixel's samples under MSAA like the geometry's
+(shaders/_coverage.glsl). On uneven ground a cell's slice
 is a grid whose vertices follow the height map (6.4.4); cells on flat ground are one quad, as in
 the thesis, drawn in a second instanced call."""
 
@@ -17,7 +18,6 @@ from render.shaders import load_program
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 
-GL_SAMPLE_ALPHA_TO_COVERAGE = 0x809E
 # AO_blade (eq. 6.11) is that of the heights a view meets of the blades (core/canopy.py
 # Canopy.shade_met); taken at fixed heights (0.7 of the grass from above, its top eighth towards
 # the horizon) it lit the DEM's far hills 0.81 where the blades show 0.63 of the ambient light
@@ -67,7 +67,6 @@ class ImageRenderer:
     # geometry, and of two grass types the taller one's slice lies in front of the shorter's,
     # which at one height would hide it wherever both grow (thesis 6.4.5).
     canopy = 0.7
-    alpha_ref = 0.2
     flat_ground = 0.5 * lift  # a cell whose ground varies less is one quad (set_instances)
 
     def __init__(self, ctx: moderngl.Context) -> None:
@@ -166,13 +165,11 @@ class ImageRenderer:
             p["u_fade"].value = self.fade
         p["u_top_spread"].write(spread_levels(self.textures.top.spread))
         p["u_mean_normal"].value = tuple(float(v) for v in self.textures.top.mean_normal)
-        p["u_alpha_ref"].value = self.alpha_ref
         p["u_top_color"].value = 0
         p["u_top_data"].value = 1
         self.textures.top.color.use(0)
         self.textures.top.data.use(1)
         self.ctx.enable(moderngl.DEPTH_TEST)
-        self.ctx.enable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
 
     def draw(self) -> None:
         if self.textures is not None:
@@ -180,7 +177,7 @@ class ImageRenderer:
             self.uneven.draw()
 
     def finalize(self) -> None:
-        self.ctx.disable_direct(GL_SAMPLE_ALPHA_TO_COVERAGE)
+        """Nothing to undo: the shader sets the samples its fragments cover."""
 
     def release(self) -> None:
         self.flat.release()

@@ -13,7 +13,7 @@ import moderngl
 import numba
 import numpy as np
 
-from core.canopy import Canopy, level_view
+from core.canopy import Canopy
 from core.mipmaps import stacked_slice_mips, threshold_spread, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
@@ -93,11 +93,11 @@ class LayerLevels:
     mean_color: np.ndarray  # (3,)
 
 
-def layer_levels(layers: SliceLayers, top: bool = False, alpha_ref: float = 0.5) -> LayerLevels:
+def layer_levels(layers: SliceLayers, top: bool = False) -> LayerLevels:
     n, h, w = layers.threshold.shape
     count = slice_levels(h, w)
     # vertical slices: their upper rows hide the lower ones in the reduced levels
-    color_levels = stacked_slice_mips(layers.color, count, alpha_ref, upper_first=not top)
+    color_levels = stacked_slice_mips(layers.color, count, upper_first=not top)
     data = canonical_data(layers)
     chain = weighted_chain(data, layers.color[..., 3], count)
     data_levels = [level.reshape(-1, *level.shape[2:]) for level in chain]
@@ -133,14 +133,15 @@ class SliceLevels:
     @classmethod
     def compute(cls, sliced: SlicedPatch) -> SliceLevels:
         h = sliced.height
-        families = [sliced.x.color, sliced.z.color]
+        top = (sliced.top.color[..., 3], sliced.top.height)
+        canopy = Canopy.of([sliced.x.color, sliced.z.color], h, sliced.blades, top)
         return cls(
             layer_levels(sliced.x),
             layer_levels(sliced.z),
             layer_levels(sliced.top, top=True),
             h,
-            level_view(families, h),
-            Canopy.of(families, h, sliced.sides),
+            canopy.level_colors(),
+            canopy,
             float(np.clip(sliced.top.color[..., 3].mean(), 0.0, 1.0)),
         )
 

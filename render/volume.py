@@ -103,10 +103,12 @@ class VolumeRenderer(InstancedRenderer):
         top = min(self.band[1], float(t.height))
         column = t.canopy.side_column(self.band[0]) - t.canopy.side_column(top)
         p["u_band_column"].value = max(column, 0.0)
-        p["u_level_colors"].write(np.ascontiguousarray(t.level_colors, np.float32))
+        p["u_side_colors"].write(np.ascontiguousarray(t.canopy.side_colors, np.float32))
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)
+        if self.floor is not None:  # AO_blade of what the horizontal slice shows
+            p["u_floor_shade"].value = t.canopy.top_shade(frame.lighting.blade_ao_height)
         p["u_skip_steps"].value = self.skip_steps
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
         # how short averaging makes a normal at most (shaders/volume.glsl blends by it)

@@ -33,7 +33,8 @@ def main() -> None:
     weighted_chain(np.zeros((1, 4, 4, 4), np.float32), np.zeros((1, 4, 4), np.float32), 3)
     canonical_data(
         SliceLayers(
-            *(np.zeros((1, 4, 4, c), np.float32) for c in (4, 3)), np.zeros((1, 4, 4), np.float32)
+            *(np.zeros((1, 4, 4, c), np.float32) for c in (4, 3)),
+            *(np.zeros((1, 4, 4), np.float32) for _ in range(2)),
         )
     )
     print(f"sward setup: numba kernels compiled in {time.perf_counter() - start:.1f} s")

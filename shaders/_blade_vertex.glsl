@@ -29,17 +29,21 @@ in vec2 in_lod;                // per instance: transition (w, side)
 in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
 in vec4 in_config;             // per instance: config transform into the design maps
 
-out vec3 v_world;
-out vec3 v_normal;
-out vec2 v_uv;
-out vec3 v_color;
-out vec4 v_map_color;          // colour modulation (eq. 6.8) at the vertex
-out vec3 v_ambient;            // ambient and diffuse light maps at the vertex (eq. 6.9)
-out vec3 v_diffuse;
+// Taken at the centroid of the samples a fragment covers: far away a blade's triangles are
+// thinner than a pixel, and at the pixel's centre, outside the triangle, its attributes were
+// extrapolated along the blade, and the far blades drew more of their tips' colour, height
+// and light than they show.
+centroid out vec3 v_world;
+centroid out vec3 v_normal;
+centroid out vec2 v_uv;
+centroid out vec3 v_color;
+centroid out vec4 v_map_color; // colour modulation (eq. 6.8) at the vertex
+centroid out vec3 v_ambient;   // ambient and diffuse light maps at the vertex (eq. 6.9)
+centroid out vec3 v_diffuse;
 flat out float v_threshold;
 flat out float v_opacity;
 flat out float v_density;      // local density at the root, for AO_blade
-out float v_height;            // height above the ground, for AO_blade
+centroid out float v_height;  // height above the ground, for AO_blade
 #ifndef CAPTURE
 flat out vec2 v_lean;          // the wind's lean at the root (the wind view)
 #endif

@@ -1,10 +1,12 @@
-#version 330 core
+#version 400 core
 // Geometry-based grass (thesis 5.1): every cell instance of the patch in one instanced draw.
 // Blades whose density threshold exceeds the local density are dropped in the vertex stage
 // (moved outside the clip volume, so they cost no raster work); the blade texture's alpha
-// shapes the blade through an alpha test plus alpha-to-coverage under MSAA.
+// shapes the blade through an alpha test plus its coverage of the pixel's samples under MSAA
+// (_coverage.glsl).
 #include "_lighting.glsl"
 #include "_wind.glsl"
+#include "_coverage.glsl"
 
 #if defined VERTEX_SHADER
 
@@ -17,16 +19,16 @@ uniform sampler2D u_blade;
 uniform vec3 u_eye;
 uniform float u_alpha_ref;     // medium alpha-test reference
 
-in vec3 v_world;
-in vec3 v_normal;
-in vec2 v_uv;
-in vec3 v_color;
-in vec4 v_map_color;
-in vec3 v_ambient;
-in vec3 v_diffuse;
+centroid in vec3 v_world;
+centroid in vec3 v_normal;
+centroid in vec2 v_uv;
+centroid in vec3 v_color;
+centroid in vec4 v_map_color;
+centroid in vec3 v_ambient;
+centroid in vec3 v_diffuse;
 flat in float v_opacity;
 flat in float v_density;
-in float v_height;
+centroid in float v_height;
 flat in vec2 v_lean;
 
 out vec4 f_color;
@@ -40,6 +42,7 @@ void main() {
     vec3 albedo = mix(v_color * tex.rgb, v_map_color.rgb, v_map_color.a);  // eq. 6.8
     vec3 lit = shade(albedo, n, ao_blade(v_height, v_density), v_ambient, v_diffuse);
     f_color = vec4(technique(wind_view(lit, v_lean)), tex.a);
+    gl_SampleMask[0] = coverage_mask(tex.a, uint(gl_PrimitiveID));
 }
 
 #endif

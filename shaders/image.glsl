@@ -1,4 +1,4 @@
-#version 330 core
+#version 400 core
 // Image-based grass (thesis 5.3): one horizontal quad per (macro-)cell just above the ground,
 // textured with the patch seen from above; density threshold test; the shared lighting model.
 // Aperiodic tiling mirrors the lookup (eq. 6.6); design maps through the config transform.
@@ -7,6 +7,7 @@
 #include "_design.glsl"
 #include "_slices.glsl"
 #include "_wind.glsl"
+#include "_coverage.glsl"
 
 #if defined VERTEX_SHADER
 
@@ -70,7 +71,6 @@ uniform float u_level_shade[8];
 uniform float u_over_shade[8];  // the same over another type's grass (u_under)
 uniform vec3 u_top_mean;
 uniform float u_density;
-uniform float u_alpha_ref;
 uniform vec3 u_eye;
 uniform float u_grass_height;  // the grass type's tallest blade (the slices' height)
 uniform float u_canopy;        // the slice's height, a fraction of u_grass_height (render/image.py)
@@ -135,16 +135,18 @@ void main() {
     int j = min(i + 1, 7);
     bool top_seen = u_top_depth > 1e-3;  // a top view with something in it
     float tan_up = sin_up / max(sqrt(1.0 - sin_up * sin_up), 1e-3);
-    float tau_top = -log(max(1.0 - c.a, 1e-4));
-    float rel = 1.0;
-    float tau_side = rel * mix(u_side_column, u_over_column, under) / tan_up;
+    // The blades stand upright on sloping ground: a ray crosses their layer (of a height h
+    // over the ground) over a run h n_y / (u · n), and meets their area from above over its
+    // vertical part, h n_y u_y / (u · n): the top view's depth times n_y u_y / (u · n) (1 on
+    // flat ground; on a slope facing the eye the ray leaves the layer after a short descent).
+    // Its horizontal part, h n_y |u_xz| / (u · n) = h / tan θ, takes the side, as above.
+    float top_run = ground_up.y * max(u.y, 0.0) / max(dot(u, ground_up), 1e-3);
+    float tau_top = -log(max(1.0 - c.a, 1e-4)) * top_run;
+    float tau_side = mix(u_side_column, u_over_column, under) / tan_up;
     float tau = sqrt(tau_top * tau_top + tau_side * tau_side);
     c.a = 1.0 - exp(-tau);
-    // of what the ray meets, the share its side part shows (the ellipse's part along it)
-    float side = tau_side * tau_side / max(tau * tau, 1e-8);
     // without a top view, the thresholds under a texel are all the blades': uniform
     float threshold = top_seen ? data.a : 0.5;
-    if (c.a < u_alpha_ref) discard;  // the blades' shapes (coverage-kept alpha, 4.2.2)
     vec2 size = vec2(textureSize(u_top_color, 0));
     float lod = max(log2(max(length(duv_x * size), length(duv_y * size))), 0.0);
     // of the blades under the texel, the share kept; alpha-to-coverage draws that share
@@ -156,16 +158,14 @@ void main() {
     // or darker than their neighbours, a checkerboard nobody would see in the blades themselves.
     vec3 n = slice_normal(data);  // turned up, as the mean normal
     vec3 to_eye = normalize(u_eye - v_world);
-    // Seen from above, the top view shows between the tips the blades' lower, darker parts, which
-    // a level view does not reach: as far as the ray meets the blades from the side, the colour
-    // is what a view from that elevation meets of the vertical slices (core/canopy.py), varied
-    // texel by texel as the top view's colour varies about its mean.
+    // Seen from above, the top view shows between the tips the blades' lower, darker parts,
+    // which a lower view does not reach: the colour is what a view from this elevation meets of
+    // the blades, from the side and from above (core/canopy.py), varied texel by texel as the
+    // top view's colour varies about its mean.
     vec3 met = mix(mix(u_level_colors[i], u_level_colors[j], row - float(i)),
                    mix(u_over_colors[i], u_over_colors[j], row - float(i)), under);
-    vec3 tint = met / max(u_top_mean, vec3(1e-3));
-    vec3 seen_side = top_seen ? c.rgb * tint : met;
-    vec3 albedo = modulate(mix(c.rgb, seen_side, side),
-                           design_color_at(v_design, design_dx, design_dy));
+    vec3 seen = top_seen ? c.rgb * (met / max(u_top_mean, vec3(1e-3))) : met;
+    vec3 albedo = modulate(seen, design_color_at(v_design, design_dx, design_dy));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
     // the slice's own normal varies about the patch's mean normal; on a slope, as the upright
     // blades there differ from those on flat ground at this elevation over the ground
@@ -184,6 +184,7 @@ void main() {
     float ao = 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * shade;
     vec3 lit = shade_l(albedo, l, ao, design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(wind_view(lit, lean)), c.a);
+    gl_SampleMask[0] = coverage_mask(c.a, uint(gl_PrimitiveID));
 }
 
 #endif

@@ -64,7 +64,8 @@ uniform vec3 u_band;
 // the blades' depth from the side per patch length, summed over this pass's heights
 // (core/canopy.py side_column)
 uniform float u_band_column;
-uniform vec3 u_level_colors[8];  // what a view from each elevation meets (core/canopy.py)
+// what a view from each elevation meets of the blades' side (core/canopy.py side_colors)
+uniform vec3 u_side_colors[8];
 // the vertical slices, stacked along v: the N across x (u runs along z), then the N across z
 // (u runs along x); one texture for both, so that a step fetches once (render/slices.py)
 uniform sampler2D u_side_color;
@@ -76,6 +77,9 @@ uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_side_mean_length;  // length of the vertical slices' mean normal (smallest level)
 uniform float u_floor;         // height of the horizontal slice inside the volume (< 0: none)
+// the mean of 1 − smoothstep(0, B_height, y) over the heights y the horizontal slice shows
+// (core/canopy.py Canopy.top_shade): AO_blade of what it shows
+uniform float u_floor_shade;
 uniform int u_skip_steps;      // coarse steps over the height map before the slices
 // the height map and this grass type's density in one texture (render/design_maps.py): the ray
 // reads both at every step with one fetch; the same texels as u_design's height and density
@@ -154,15 +158,12 @@ vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l, out 
     keep = lod_share(data.a, level_value(u_top_spread, top_lod), density,
                      lod_at(v_lod, distance(u_eye.xz, v_origin + g.xz), v_size));
     c.a *= keep;
-    // The layer stands for the blades below it: AO_blade at their mean height, half the
-    // layer's (at the layer's own height the DEM's slopes facing the eye, whose rays it
-    // catches since it follows the ground, were drawn brighter than the blades: sward quality
-    // in README; at the top view's 0.7 of the grass, brighter still). Its texels hold many
-    // blades each: lit by the blades' mean diffuse factor seen from the ray (the facing
-    // table). Its averaged normal, turned up and made unit length, faced the sky and lit the
-    // steep views near the eye 15/255 brighter than the blades
-    // (scripts/representation_bands.py --sun-view, meadow path).
-    ao_l = vec2(ao_blade(0.5 * u_floor, density), facing);
+    // The layer is the top view: AO_blade of the heights it shows (u_floor_shade). Its texels
+    // hold many blades each: lit
+    // by the blades' mean diffuse factor seen from the ray (the facing table). Its averaged
+    // normal, turned up and made unit length, faced the sky and lit the steep views near the
+    // eye brighter than the blades.
+    ao_l = vec2(1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * u_floor_shade, facing);
     return c;
 }
 
@@ -249,8 +250,8 @@ void main() {
     // 1.0 the volume met the blades 10/255 too low near the eye in tests/render/
     // test_far_field.py's height view; 1.5 gave the best sward quality figures of 1.0 … 2.0,
     // README).
-    const float CROSSING_GAIN = 1.5;
-    float crossing = CROSSING_GAIN / max(abs(d.x) + abs(d.z), 0.25);
+    const float CROSSING_GAIN = 1.0;
+    float crossing = CROSSING_GAIN * length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
     float depth_lambda = -1.0;
     // The depth is that of the point where the ray became u_depth_alpha opaque: half, for the
     // fragment's own test against what was drawn before it (ground, blades, image-based
@@ -309,16 +310,20 @@ void main() {
     // (the table's rows: θ_j = 90° ((j + ½) / 8)², as image.glsl)
     float met_row = clamp(sqrt(over_ground * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
     int met_i = int(floor(met_row));
-    vec3 floor_met = mix(u_level_colors[met_i], u_level_colors[min(met_i + 1, 7)],
+    vec3 floor_met = mix(u_side_colors[met_i], u_side_colors[min(met_i + 1, 7)],
                          met_row - float(met_i));
     vec3 floor_at = e + floor_lambda * d;
     if (floor_lambda < 1e29) {
         if (all(greaterThanEqual(floor_at.xz, vec2(0.0))) && all(lessThanEqual(floor_at.xz, v_size))) {
             floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
                                       facing * slope_l, floor_ao_l, floor_keep);
-            // in this pass's band of heights, with its share of the blades (u_band)
+            // in this pass's band of heights, with its share of the blades (u_band); on sloping
+            // ground the ray meets their area from above over the vertical part of its run
+            // through the layer, n_y u_y / (u · n) of the top view's depth (as image.glsl)
             bool in_band = u_floor >= u_band.x && u_floor < min(u_band.y, u_height + 1.0);
-            floor_sample.a = in_band ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), u_band.z) : 0.0;
+            float top_run = ground_up.y * max(-d.y, 0.0) / max(dot(-d, ground_up), 1e-3);
+            floor_sample.a = in_band
+                ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), u_band.z * top_run) : 0.0;
             if (!in_band) floor_keep = 0.0;
         }
     }

@@ -1,6 +1,7 @@
 """What a view at a low elevation meets of the grass (core/canopy.py)."""
 
 import numpy as np
+import pytest
 
 from core.canopy import elevations, level_view
 
@@ -94,16 +95,38 @@ def test_a_level_rays_column_depth_sums_the_rows_above_a_height():
     assert canopy.side_column(1.0) == 0.0
 
 
-def test_the_blades_depth_from_the_side_is_their_area_seen_along_a_level_ray():
-    """core/canopy.py BladeSides: an upright square 0.1 on a side facing x, its texture whole
+def test_the_blades_depths_are_their_area_seen_from_the_side_and_from_above():
+    """core/canopy.py BladeDepths: an upright square 0.1 on a side facing x, its texture whole
     (v = 0), gives a level ray its area times 2/π (|cos| averaged over the directions around
-    it); a flat one lying on the ground gives none; the rows above half its height, half."""
-    from core.canopy import BladeSides
+    it) and a vertical ray nothing; a flat one lying on the ground gives a vertical ray its
+    area and a level one nothing; the rows above half the upright one's height, half."""
+    from core.canopy import BladeDepths
 
     upright = np.array([(0, 0, 0), (0, 0, 0.1), (0, 0.1, 0), (0, 0.1, 0.1)], np.float64)
     flat = np.array([(0, 0, 0), (0.1, 0, 0), (0, 0, 0.1), (0.1, 0, 0.1)], np.float64)
     quads = np.array([[0, 1, 2], [2, 1, 3], [4, 5, 6], [6, 5, 7]])
-    sides = BladeSides.of(np.concatenate([upright, flat]), np.zeros((8, 2)), quads)
-    assert np.isclose(sides.column(), 0.01 * 2 / np.pi)
-    assert np.isclose(sides.column(0.05), 0.5 * 0.01 * 2 / np.pi)  # one of its two triangles
-    assert sides.column(0.2) == 0.0
+    blades = BladeDepths.of(np.concatenate([upright, flat]), np.zeros((8, 2)), quads)
+    assert np.isclose(blades.column(), 0.01 * 2 / np.pi)
+    assert np.isclose(blades.column(0.05), 0.5 * 0.01 * 2 / np.pi)  # one of its two triangles
+    assert blades.column(0.2) == 0.0
+    side, top = blades.rows(0.1, 2)  # the lower row holds the flat square and half the other
+    np.testing.assert_allclose(side, [0.005 * 2 / np.pi, 0.005 * 2 / np.pi])
+    np.testing.assert_allclose(top, [0.01, 0.0])
+
+
+def test_a_steep_view_meets_the_blades_area_from_above():
+    """Campbell's ellipse: blades lying flat stop a vertical ray by their area from above and
+    a level one not at all; upright ones the other way round (core/canopy.py row_depths)."""
+    from core.canopy import BladeDepths, Canopy
+
+    flat = np.array([(0, 0.05, 0), (1, 0.05, 0), (0, 0.05, 1), (1, 0.05, 1)], np.float64)
+    upright = np.array([(0, 0, 0.5), (0, 0.1, 0.5), (1, 0, 0.5), (1, 0.1, 0.5)], np.float64)
+    quads = np.array([[0, 1, 2], [2, 1, 3]])
+    stack = [slices([(0.0, 1.0, 0.0, 0.5)] * 4)]
+    lying = Canopy.of(stack, 0.1, BladeDepths.of(flat, np.zeros((4, 2)), quads))
+    standing = Canopy.of(stack, 0.1, BladeDepths.of(upright, np.zeros((4, 2)), quads))
+    steep, level = np.radians(89.9), np.radians(0.5)
+    assert lying.row_depths(steep).sum() == pytest.approx(1.0, rel=1e-3)
+    assert lying.row_depths(level).sum() == pytest.approx(1.0, rel=1e-3)  # still the area
+    assert standing.row_depths(steep).sum() < 0.01
+    assert standing.row_depths(level).sum() == pytest.approx(0.1 * 2 / np.pi / np.tan(level))
