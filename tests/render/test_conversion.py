@@ -92,3 +92,16 @@ def test_conversion_steps_report_progress_and_give_the_same_slices(converter, ct
     whole = converter.convert(patch, 3, SIZE, top_size=32)
     assert np.array_equal(sliced.x.color, whole.x.color)
     assert np.array_equal(sliced.top.threshold, whole.top.threshold)
+
+
+def test_the_top_view_covers_what_the_blades_cover_at_any_size(converter):
+    """The blade's mask is read at its base level: a leaning blade seen from above is
+    foreshortened along its length, and read through the mip chain its mask blurred, so the
+    top view covered less the coarser it was captured (the blades' own cover is one figure)."""
+    patch = generate_patch(PARAMS)
+    cover = [
+        float(converter.convert(patch, 1, SIZE, top_size=size).top.color[..., 3].mean())
+        for size in (64, 512)
+    ]
+    assert 0.2 < cover[1] < 0.95
+    assert cover[0] == pytest.approx(cover[1], abs=0.015)
