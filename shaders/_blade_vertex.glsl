@@ -41,6 +41,7 @@ centroid out vec4 v_map_color; // colour modulation (eq. 6.8) at the vertex
 centroid out vec3 v_ambient;   // ambient and diffuse light maps at the vertex (eq. 6.9)
 centroid out vec3 v_diffuse;
 flat out float v_threshold;
+flat out uint v_salt;          // the triangle's own: its last vertex and its cell
 flat out float v_opacity;
 flat out float v_density;      // local density at the root, for AO_blade
 centroid out float v_height;  // height above the ground, for AO_blade
@@ -49,6 +50,8 @@ flat out vec2 v_lean;          // the wind's lean at the root (the wind view)
 #endif
 
 void main() {
+    v_salt = uint(gl_VertexID) * 747796405u
+             + (floatBitsToUint(in_origin.x) ^ (floatBitsToUint(in_origin.y) * 2891336453u));
     vec3 s = vec3(in_mirror.x, 1.0, in_mirror.y);
     vec3 local = (in_position - vec3(0.5, 0.0, 0.5)) * s + vec3(0.5, 0.0, 0.5);  // eq. 6.7
     vec2 root = (in_root - 0.5) * in_mirror + 0.5;

@@ -4,8 +4,9 @@
 // dither and gives every fragment in a pixel the same samples: blades' partly covered texels
 // far away (minified tips, fading LOD) covered up to half a sample more than their alpha, and
 // overlapping ones hid one another instead of adding up. ξ and the rotation come from a hash of
-// the pixel and the fragment's `salt` (its primitive), so overlapping blades pick their samples
-// independently, as the blades they stand for cover a pixel independently.
+// the pixel and the fragment's `salt` (its triangle, or cell), so overlapping blades pick their
+// samples independently, as the blades they stand for cover a pixel independently (not
+// gl_PrimitiveID, which takes llvmpipe off its fast path).
 #if defined FRAGMENT_SHADER
 uint coverage_hash(uvec3 v) {
     v = v * 1664525u + 1013904223u;

@@ -26,6 +26,7 @@ centroid in vec3 v_color;
 centroid in vec4 v_map_color;
 centroid in vec3 v_ambient;
 centroid in vec3 v_diffuse;
+flat in uint v_salt;
 flat in float v_opacity;
 flat in float v_density;
 centroid in float v_height;
@@ -42,7 +43,7 @@ void main() {
     vec3 albedo = mix(v_color * tex.rgb, v_map_color.rgb, v_map_color.a);  // eq. 6.8
     vec3 lit = shade(albedo, n, ao_blade(v_height, v_density), v_ambient, v_diffuse);
     f_color = vec4(technique(wind_view(lit, v_lean)), tex.a);
-    gl_SampleMask[0] = coverage_mask(tex.a, uint(gl_PrimitiveID));
+    gl_SampleMask[0] = coverage_mask(tex.a, v_salt);
 }
 
 #endif

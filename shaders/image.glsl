@@ -184,7 +184,7 @@ void main() {
     float ao = 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * shade;
     vec3 lit = shade_l(albedo, l, ao, design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(wind_view(lit, lean)), c.a);
-    gl_SampleMask[0] = coverage_mask(c.a, uint(gl_PrimitiveID));
+    gl_SampleMask[0] = coverage_mask(c.a, floatBitsToUint(v_origin.x) ^ floatBitsToUint(v_origin.y));
 }
 
 #endif
