@@ -57,15 +57,6 @@ def _met(depth, c, other=None) -> tuple[float, np.ndarray]:
     return float(w.sum()), (w[:, None] * c[::-1]).sum(axis=0) / max(float(w.sum()), 1e-9)
 
 
-def level_view(
-    families: list[np.ndarray], height: float, blades: BladeDepths | None = None,
-    count: int = ELEVATIONS,
-) -> np.ndarray:  # fmt: skip
-    """(count, 3) colours met at each table elevation, averaged over the families of vertical
-    slices ((n, rows, w, 4) colour + alpha arrays, 0 … 1, rows running upward)."""
-    return Canopy.of(families, height, blades).level_colors(count)
-
-
 @dataclass(frozen=True)
 class BladeDepths:
     """What a ray meets of a patch's blades, from their triangles, up from each height: each

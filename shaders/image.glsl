@@ -108,14 +108,13 @@ void main() {
     vec4 data = textureGrad(u_top_data, uv, duv_x, duv_y);
     float density = u_density * v_density * design_density(v_design);
     // The blades a ray meets (Campbell's ellipsoidal leaf-angle model). From straight above
-    // they are what the top view covers, depth τ_top = −ln(1 − a); from the side, what the
-    // vertical slices' rows stop, their column depth over tan θ (core/canopy.py side_column;
+    // they are what the top view covers, depth τ_top = −ln(1 − a); from the side, the blades'
+    // area seen along a level ray, their column depth over tan θ (core/canopy.py side_column;
     // above another type's grass, u_under: the density channels of the types whose slices lie
     // lower, only the rows above that grass, for a ray passing between these blades meets it);
     // between, the two are the axes of an ellipse: τ(θ) = √(τ_top² + (column / tan θ)²). For
     // randomly turned blades the two agree and this is τ_top / sin θ; upright blades show
-    // nothing from above (a vertical ribbon has no area there) and are all side. The side part
-    // varies texel by texel as the top view's depth does about its mean, where there is one.
+    // nothing from above (a vertical ribbon has no area there) and are all side.
     // (the elevation θ of the ray over the grass layer: upright blades on ground that rises
     // towards the eye are crossed over a shorter run than on flat ground, and a ray descending
     // at tan e over a rise of gradient g along it meets the ground after h / (tan e + g), so

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from core.canopy import elevations, level_view
+from core.canopy import Canopy, elevations
 
 
 def slices(rows_rgba):
@@ -15,21 +15,21 @@ def slices(rows_rgba):
 
 def test_an_opaque_top_row_is_all_a_low_view_meets():
     stack = slices([(0.0, 0.0, 1.0, 1.0)] * 3 + [(1.0, 0.0, 0.0, 1.0)])
-    colours = level_view([stack], 1.0)
+    colours = Canopy.of([stack], 1.0).level_colors()
     low = elevations() < np.radians(20.0)
     np.testing.assert_allclose(colours[low], np.tile([1.0, 0.0, 0.0], (low.sum(), 1)), atol=1e-3)
 
 
 def test_empty_rows_are_seen_through():
     stack = slices([(0.0, 1.0, 0.0, 1.0)] * 2 + [(1.0, 0.0, 0.0, 0.0)] * 2)
-    colours = level_view([stack], 1.0)
+    colours = Canopy.of([stack], 1.0).level_colors()
     np.testing.assert_allclose(colours[:, 1], 1.0, atol=1e-3)
 
 
 def test_the_flatter_the_view_the_more_of_the_upper_rows_it_meets():
     """Sparse rows: a steep view reaches the lower rows, a level one stops near the top."""
     stack = slices([(0.0, 0.0, 1.0, 0.1)] * 4 + [(1.0, 0.0, 0.0, 0.1)] * 4)
-    colours = level_view([stack], 1.0)
+    colours = Canopy.of([stack], 1.0).level_colors()
     red = colours[:, 0]
     assert np.all(np.diff(red) < 0)  # elevations rise: less and less of the top
     assert red[0] > 0.9 and red[-1] < 0.7
@@ -39,8 +39,6 @@ def test_in_another_grass_a_type_stops_a_ray_by_its_share_of_the_blades():
     """Red rows over the whole height in a dense blue grass reaching half of it: a level ray
     is stopped by the red rows above the blue grass, a steep one reaches the blue grass more
     often; and with no grass beneath, the red stops every ray that anything stops."""
-    from core.canopy import Canopy
-
     red = Canopy.of([slices([(1.0, 0.0, 0.0, 0.05)] * 8)], 1.0)
     dense = Canopy.of([slices([(0.0, 0.0, 1.0, 0.9)] * 8)], 0.5)
     share, colours = red.over(dense)
@@ -53,8 +51,6 @@ def test_in_another_grass_a_type_stops_a_ray_by_its_share_of_the_blades():
 
 
 def test_a_view_reaches_the_lower_rows_less_the_flatter_it_is():
-    from core.canopy import Canopy
-
     canopy = Canopy.of([slices([(0.0, 1.0, 0.0, 0.2)] * 8)], 1.0)
     theta = elevations()
     seen = canopy.transmittance(np.array([0.1, 0.5, 0.9, 1.5]), theta)
@@ -68,8 +64,6 @@ def test_the_ao_a_view_meets_darkens_as_it_reaches_down():
     """1 − smoothstep(0, B_height, y) over the heights met: near 0 for a level view into a
     canopy whose top lies above B_height, more the steeper the view; another type's dense
     grass standing among the blades takes the deep rays."""
-    from core.canopy import Canopy
-
     canopy = Canopy.of([slices([(0.0, 1.0, 0.0, 0.2)] * 8)], 1.0)
     shade = canopy.shade_met(0.5)
     assert np.all(np.diff(shade) > 0)
@@ -83,8 +77,6 @@ def test_a_level_rays_column_depth_sums_the_rows_above_a_height():
     a row meets 1 − 0.8 · 0.5 of it, depth −ln 0.4 per patch length; four rows of a grass 1 tall
     sum to that, and the rows above 0.25 (three of them) or 0.375 (two and a half) to their
     share (core/canopy.py side_column, the image-based grass's depth from the side)."""
-    from core.canopy import Canopy
-
     stack = np.zeros((2, 4, 4, 4), np.float32)
     stack[0, ..., 3], stack[1, ..., 3] = 0.2, 0.5
     canopy = Canopy.of([stack], 1.0)
@@ -117,7 +109,7 @@ def test_the_blades_depths_are_their_area_seen_from_the_side_and_from_above():
 def test_a_steep_view_meets_the_blades_area_from_above():
     """Campbell's ellipse: blades lying flat stop a vertical ray by their area from above and
     a level one not at all; upright ones the other way round (core/canopy.py row_depths)."""
-    from core.canopy import BladeDepths, Canopy
+    from core.canopy import BladeDepths
 
     flat = np.array([(0, 0.05, 0), (1, 0.05, 0), (0, 0.05, 1), (1, 0.05, 1)], np.float64)
     upright = np.array([(0, 0, 0.5), (0, 0.1, 0.5), (1, 0, 0.5), (1, 0.1, 0.5)], np.float64)
