@@ -9,8 +9,8 @@ only the blades that reach it (one run of indices per slab and tile offset), not
 nine times, which made conversion cost 9× the patch's vertices per slice.
 
 Every slice keeps: albedo + alpha, patch-space normal, density threshold and the height of what
-each texel shows. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices and at
-z = 0 for the horizontal slice.
+each texel shows. The results are numpy arrays, row 0 at the ground (v = 0) for vertical slices
+and at z = 0 for the horizontal slice.
 """
 
 from __future__ import annotations
