@@ -41,7 +41,7 @@ from render.slices import SliceTextures
 from render.tiling import TilingNoise
 from render.uniforms import FrameUniforms
 from render.volume import VolumeRenderer
-from render.volume_order import DEPTH_BANDS, beneath_heights, distance_bands, height_parts
+from render.volume_order import DEPTH_BANDS, beneath_heights, distance_bands, stacked_parts
 from render.wind import WindNoise
 
 
@@ -418,6 +418,7 @@ class FramePipeline:
             [g.image.layer_height() for g in self.grass_types],
             [g.image.textures.height if g.image.textures else 0.0 for g in self.grass_types],
         )
+        parts = stacked_parts(beneath)
         passes = []
         volumes = []
         for index, batches in enumerate(drawn):
@@ -427,8 +428,8 @@ class FramePipeline:
                         ((order[representation], -slices), representation, renderer, count)
                     )
                 elif count:
-                    for phase, band in height_parts(beneath[index]):
-                        volumes.append(((phase, -slices), renderer, band))
+                    for turn, band in parts[index]:
+                        volumes.append(((turn, -slices), renderer, band))
         for _, representation, renderer, drawn_count in sorted(passes, key=lambda p: p[0]):
             if drawn_count:
                 self._check_abort()

@@ -41,8 +41,8 @@ class VolumeRenderer(InstancedRenderer):
     # None: no layer, for a grass type standing over a shorter one (render/frame.py), whose
     # own volume is what such a ray meets below.
     floor: float | None = 0.5
-    # the heights over the ground a pass counts and the share of the blades there (render/
-    # frame.py draws a grass type that stands over another in parts)
+    # the heights over the ground a pass counts and the share of the blades there (grass
+    # types that grow among each other are drawn in bands of height: render/volume_order.py)
     band = (0.0, float("inf"), 1.0)
     # the cells of the frame, far to near, and their distances (render/grass_type.py upload)
     cells: np.ndarray | None = None

@@ -4,38 +4,39 @@ The volume writes no depth: its fragments are blended over what is drawn before 
 order is the compositing. Each pass's cells go far to near (render/grass_type.py sorts them);
 several passes (levels, grass types, parts) over the same places are drawn in bands of
 distance, far to near, each band pass by pass, or a later pass's far cuboids would go over an
-earlier pass's near ones. A grass type that stands over another is drawn in parts: its blades
-among the shorter grass half before and half after it, the mean of the two orders of two
-interleaved veils, and its part above the shorter grass last, over it."""
+earlier pass's near ones.
+
+Grass types that grow among each other are drawn in bands of height, low to high, each type's
+part of a band in turn. A ray into the grass meets the upper blades of both types first and
+their lower parts behind them; a type drawn whole over the other showed its own lower, darker
+parts where the other's blades hide them, and the pair went dark (the meadow with the long-thin
+preset: its volume 12 % darker than the blades, sward quality --sweep). Which type goes first
+alternates from band to band, the taller type's last, so that its part above the other lies on
+top."""
 
 from __future__ import annotations
 
 import numpy as np
 
 DEPTH_BANDS = 8  # bands of distance when there are several volume passes
+HEIGHT_BANDS = 2  # bands of height where grass types grow among each other
 INF = float("inf")
 Band = tuple[float, float, float]  # heights over the ground from, to; the share of the blades
+Part = tuple[tuple[int, int], Band]  # (band of height, turn in it), band
 
 
 def beneath_heights(tops: list[float | None], heights: list[float]) -> list[float | None]:
     """Per grass type, the slice height of the tallest type whose layer lies lower than its
-    own (`tops`: each type's layer height, None without slices), or None."""
+    own (`tops`: each type's layer height, None without slices), or None. Of two types with
+    their layers as high, the later stands over the earlier."""
     out: list[float | None] = []
-    for own in tops:
+    for index, own in enumerate(tops):
         lower = [
-            h for top, h in zip(tops, heights, strict=True)
-            if own is not None and top is not None and top < own
+            h for other, (top, h) in enumerate(zip(tops, heights, strict=True))
+            if own is not None and top is not None and (top, other) < (own, index)
         ]  # fmt: skip
         out.append(float(max(lower)) if lower else None)
     return out
-
-
-def height_parts(beneath: float | None) -> list[tuple[int, Band]]:
-    """A type's volume passes as (phase, band): phase 1 for a type that stands over none; the
-    parts of one that stands over grass `beneath` tall in phases 0, 2 (among it) and 3 (above)."""
-    if beneath is None:
-        return [(1, (0.0, INF, 1.0))]
-    return [(0, (0.0, beneath, 0.5)), (2, (0.0, beneath, 0.5)), (3, (beneath, INF, 1.0))]
 
 
 def distance_bands(distances: list[np.ndarray], bands: int) -> list[list[slice]]:
@@ -54,4 +55,26 @@ def distance_bands(distances: list[np.ndarray], bands: int) -> list[list[slice]]
             stop = int(cut[b]) if b < bands - 1 else d.size
             row.append(slice(start, max(start, stop)))
         out.append(row)
+    return out
+
+
+def stacked_parts(beneath: list[float | None], bands: int = HEIGHT_BANDS) -> list[list[Part]]:
+    """Per grass type (`beneath`: beneath_heights), its volume passes as (order, band): the
+    passes of all types sorted by order are drawn in that order. Without one type standing
+    over another, each type is one pass. Else the heights up to the tallest grass another
+    stands over are cut into `bands` bands (the last reaches up to the sky), each type draws
+    each band with all of its blades there, and in each band the type standing over another
+    goes first or second by turns, second in the top band."""
+    among = [b for b in beneath if b is not None]
+    if not among:
+        return [[((0, 0), (0.0, INF, 1.0))] for _ in beneath]
+    edges = [max(among) * k / bands for k in range(bands)] + [INF]
+    out = []
+    for b in beneath:
+        over = b is not None
+        parts: list[Part] = []
+        for k in range(bands):
+            taller_first = (bands - 1 - k) % 2 == 1
+            parts.append(((k, 0 if over == taller_first else 1), (edges[k], edges[k + 1], 1.0)))
+        out.append(parts)
     return out

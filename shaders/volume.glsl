@@ -58,8 +58,8 @@ uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
 uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
 uniform float u_depth_alpha;   // how opaque the ray is where its depth is taken
-// the heights over the ground this pass counts, and the share of their blades (render/frame.py:
-// a grass type standing over another is drawn in parts, among and over the other's grass)
+// the heights over the ground this pass counts, and the share of their blades (grass types that
+// grow among each other are drawn in bands of height: render/volume_order.py)
 uniform vec3 u_band;
 // the blades' depth from the side per patch length, summed over this pass's heights
 // (core/canopy.py side_column)

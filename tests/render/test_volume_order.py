@@ -1,9 +1,11 @@
 """The order of the volume passes (render/volume_order.py): bands of distance that cover every
 cell once, far to near, and the parts of a grass type standing over another."""
 
+import itertools
+
 import numpy as np
 
-from render.volume_order import INF, beneath_heights, distance_bands, height_parts
+from render.volume_order import INF, beneath_heights, distance_bands, stacked_parts
 
 
 def test_distance_bands_take_every_cell_once_far_to_near():
@@ -26,10 +28,17 @@ def test_one_pass_is_one_band():
     assert distance_bands(d, 1) == [[slice(0, 3)]]
 
 
-def test_a_taller_type_is_drawn_in_parts_around_the_shorter():
+def test_types_among_each_other_are_drawn_in_bands_of_height_by_turns():
     beneath = beneath_heights([0.5, 0.2, None], [0.7, 0.3, 0.0])
     assert beneath == [0.3, None, None]
-    assert height_parts(None) == [(1, (0.0, INF, 1.0))]
-    parts = height_parts(0.3)
-    assert [p for p, _ in parts] == [0, 2, 3]  # before, after the shorter (phase 1), above
-    assert sum(band[2] for _, band in parts if band[1] == 0.3) == 1.0  # its blades once
+    assert beneath_heights([0.4, 0.4], [0.6, 0.6]) == [None, 0.6]  # as high: the later over
+    assert stacked_parts([None, None]) == [[((0, 0), (0.0, INF, 1.0))]] * 2  # one pass each
+    tall, short, none = stacked_parts(beneath, bands=3)
+    for parts in (tall, short, none):
+        bands = [band for _, band in parts]
+        assert bands[0][0] == 0.0 and bands[-1][1] == INF  # every height once, low to high
+        assert all(a[1] == b[0] for a, b in itertools.pairwise(bands))
+        assert all(share == 1.0 for _, _, share in bands)
+    order = sorted((key, name) for name, parts in (("tall", tall), ("short", short))
+                   for key, _ in parts)  # fmt: skip
+    assert [name for _, name in order] == ["short", "tall", "tall", "short", "short", "tall"]
