@@ -452,25 +452,24 @@ class FramePipeline:
             raise FrameAborted
 
     def _stack_layers(self) -> None:
-        """Tell each type's image-based renderer which types' slices lie below its own, and
-        drop the horizontal layer from the volume of a type that stands over another: it held
-        the taller type's top view and covered the shorter grass beneath (meadow default,
-        tall grass alone drawn white: the LOD frame covered 81 % of a clump the blades cover
-        61 % of, 69 % without the layer; tests/render/test_grass_types.py)."""
-        heights = [
-            (grass.image.layer_height(), grass.density_channel) for grass in self.grass_types
-        ]
-        for grass, (own, _) in zip(self.grass_types, heights, strict=True):
+        """Tell each type's image-based and volume renderers which types' slices lie below its
+        own (of two as high, the earlier lies below: render/volume_order.py). The volume's
+        horizontal layer holds its type's top view; where the grass beneath grows it covered
+        that grass (meadow default, tall grass alone drawn white: the LOD frame covered 81 % of
+        a clump the blades cover 61 %; tests/render/test_grass_types.py), so it thins there
+        as that grass's density rises."""
+        heights = [grass.image.layer_height() for grass in self.grass_types]
+        for index, (grass, own) in enumerate(zip(self.grass_types, heights, strict=True)):
             under = [
                 other
-                for other, (height, _) in zip(self.grass_types, heights, strict=True)
-                if own is not None and height is not None and height < own
+                for k, (other, height) in enumerate(zip(self.grass_types, heights, strict=True))
+                if own is not None and height is not None and (height, k) < (own, index)
             ]
             grass.image.under_channels = tuple(other.density_channel for other in under)
             tallest = max(under, key=lambda other: other.image.textures.height, default=None)
             grass.image.under = tallest.image.textures.canopy if tallest is not None else None
             for volume in grass.volumes.values():
-                volume.floor = None if under else VolumeRenderer.floor
+                volume.under_channels = grass.image.under_channels
 
     def release(self) -> None:
         for grass in self.grass_types:

@@ -38,9 +38,11 @@ class VolumeRenderer(InstancedRenderer):
     # The horizontal slice is a layer of the volume at this fraction of the grass height: rays
     # from above meet it where, among vertical slices alone, they would fall between them
     # down to the roots and look too dark (steep views; thesis 5.2 has vertical slices only).
-    # None: no layer, for a grass type standing over a shorter one (render/frame.py), whose
-    # own volume is what such a ray meets below.
     floor: float | None = 0.5
+    # the density channels of the grass types growing beneath this one (render/frame.py):
+    # where their grass grows, a ray that passes this type's slices meets their volume below,
+    # not this type's layer, which would cover them with its own top view
+    under_channels: tuple[int, ...] = ()
     # the heights over the ground a pass counts and the share of the blades there (grass
     # types that grow among each other are drawn in bands of height: render/volume_order.py)
     band = (0.0, float("inf"), 1.0)
@@ -107,6 +109,7 @@ class VolumeRenderer(InstancedRenderer):
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)
+        p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         if self.floor is not None:  # AO_blade of what the horizontal slice shows
             p["u_floor_shade"].value = t.canopy.top_shade(frame.lighting.blade_ao_height)
         p["u_skip_steps"].value = self.skip_steps

@@ -77,6 +77,7 @@ uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_side_mean_length;  // length of the vertical slices' mean normal (smallest level)
 uniform float u_floor;         // height of the horizontal slice inside the volume (< 0: none)
+uniform vec4 u_under;          // the density channels of the grass types beneath (render/volume.py)
 // the mean of 1 − smoothstep(0, B_height, y) over the heights y the horizontal slice shows
 // (core/canopy.py Canopy.top_shade): AO_blade of what it shows
 uniform float u_floor_shade;
@@ -325,6 +326,9 @@ void main() {
             floor_sample.a = in_band
                 ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), u_band.z * top_run) : 0.0;
             if (!in_band) floor_keep = 0.0;
+            // where grass of a type beneath grows, its volume holds what the ray meets below
+            floor_sample.a *= 1.0 - clamp(dot(textureLod(u_design, vec3(design_uv(v_config,
+                floor_at.xz), 0.0), 0.0), u_under), 0.0, 1.0);
         }
     }
     vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit

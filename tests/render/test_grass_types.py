@@ -116,3 +116,26 @@ def test_a_taller_types_volume_lets_the_shorter_grass_beneath_show(headless):
         cover[mode] = image[270:310, 10:125].mean() / 255.0
     assert cover["geometry"] > 0.4  # the clump is there
     assert cover["lod"] < cover["geometry"] + 0.12
+
+
+def test_a_taller_types_volume_covers_where_no_grass_grows_beneath(headless):
+    """The meadow's first type given the long-thin preset stands over the tall grass's type,
+    but where that grass does not grow (its density 0 everywhere here) its volume must cover
+    the soil as its blades do. Its horizontal layer, which holds the blades its vertical
+    slices miss, had been dropped wherever another type's slices lay lower: the soil showed
+    between the slices and the volume zone was darker than the blades."""
+    doc = get_scene("meadow").document()
+    doc.set_params(0, PRESETS["long thin meadow grass"])
+    width, height = doc.maps.size
+    doc.maps.write("density", 0, 0, np.zeros((height, width)), channel=1)
+    white, black = (1.0, 1.0, 1.0), (0.0, 0.0, 0.0)
+    doc.light = dataclasses.replace(
+        doc.light, sun_color=black, ambient_color=white, blade_ao_impact=0.0, fog_distance=1e6
+    )
+    camera = doc.camera("default")
+    mean = {}
+    for mode in ("geometry", "lod"):
+        renderer = headless(doc, mode=mode)
+        image = renderer.render(camera, (480, 270), measure=False)[0][150:190, :, :3]
+        mean[mode] = image.astype(float).mean()
+    assert abs(mean["lod"] / mean["geometry"] - 1.0) < 0.03
