@@ -175,7 +175,7 @@ def case_figures(case: Case, size: tuple[int, int], wind: bool) -> tuple[dict, n
         if case.scene == "football":
             row["touchlines"] = _touchline_gaps(shaded, camera, get_scene(case.scene).grid)
         if wind and reference is not None:
-            row["wind"] = _wind_figures(frames, document, camera, shaded, techniques, by_level)
+            row["wind"] = _wind_figures(frames, document, camera, by_level)
         row["seconds"] = time.perf_counter() - start
     finally:
         frames.release()
@@ -198,15 +198,16 @@ def _touchline_gaps(frame: np.ndarray, camera: Camera, grid: tuple[int, int]) ->
     return out
 
 
-def _wind_figures(frames, document, camera, shaded, techniques, by_level) -> dict:
+def _wind_figures(frames, document, camera, by_level) -> dict:
     """The mean change of each representation's region between the wind's moments 0 and
-    0.5 s, and the image-based region's change over the volume region's."""
+    0.5 s, and the image-based region's change over the volume region's. The regions are
+    those of the frames under the wind: while it blows, the blades reach farther out."""
     document.wind = document.wind.replace(enabled=True)
-    regions = technique_regions(shaded, techniques, by_level)
-    moments = []
-    for t in (0.0, 0.5):
-        frames.run.set_time(t)
-        moments.append(to_float(frames.lod(camera)))
+    frames.run.set_time(0.0)
+    moments = [to_float(frames.lod(camera))]
+    regions = technique_regions(moments[0], frames.lod(camera, "techniques"), by_level)
+    frames.run.set_time(0.5)
+    moments.append(to_float(frames.lod(camera)))
     change = np.abs(moments[1] - moments[0]).mean(axis=-1)
     out = {name: float(change[mask].mean()) for name, mask in regions.items() if mask.sum() >= 64}
     if "image" in out and out.get("volume"):
