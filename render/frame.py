@@ -454,10 +454,8 @@ class FramePipeline:
     def _stack_layers(self) -> None:
         """Tell each type's image-based and volume renderers which types' slices lie below its
         own (of two as high, the earlier lies below: render/volume_order.py). The volume's
-        horizontal layer holds its type's top view; where the grass beneath grows it covered
-        that grass (meadow default, tall grass alone drawn white: the LOD frame covered 81 % of
-        a clump the blades cover 61 %; tests/render/test_grass_types.py), so it thins there
-        as that grass's density rises."""
+        horizontal layer holds its type's top view and would cover the grass beneath with it
+        (tests/render/test_grass_types.py): it thins as that grass's density rises."""
         heights = [grass.image.layer_height() for grass in self.grass_types]
         for index, (grass, own) in enumerate(zip(self.grass_types, heights, strict=True)):
             under = [

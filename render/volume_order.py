@@ -9,10 +9,9 @@ earlier pass's near ones.
 Grass types that grow among each other are drawn in bands of height, low to high, each type's
 part of a band in turn. A ray into the grass meets the upper blades of both types first and
 their lower parts behind them; a type drawn whole over the other showed its own lower, darker
-parts where the other's blades hide them, and the pair went dark (the meadow with the long-thin
-preset: its volume 12 % darker than the blades, sward quality --sweep). Which type goes first
+parts where the other's blades hide them, and the pair went dark. Which type goes first
 alternates from band to band, the taller type's last, so that its part above the other lies on
-top."""
+top. Two bands keep a pair of types at four passes; each band more costs two."""
 
 from __future__ import annotations
 
