@@ -43,9 +43,9 @@ class VolumeRenderer(InstancedRenderer):
     # where their grass grows, a ray that passes this type's slices meets their volume below,
     # not this type's layer, which would cover them with its own top view
     under_channels: tuple[int, ...] = ()
-    # the heights over the ground a pass counts and the share of the blades there (grass
-    # types that grow among each other are drawn in bands of height: render/volume_order.py)
-    band = (0.0, float("inf"), 1.0)
+    # the heights over the ground a pass counts (grass types that grow among each other are
+    # drawn in bands of height: render/volume_order.py)
+    band = (0.0, float("inf"))
     # the cells of the frame, far to near, and their distances (render/grass_type.py upload)
     cells: np.ndarray | None = None
     distances: np.ndarray | None = None
@@ -98,9 +98,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
-        # half opaque, as the whole of the blades would be: a pass holding a share of them
-        p["u_depth_alpha"].value = 1.0 - 0.5 ** self.band[2]
-        p["u_band"].value = (self.band[0], min(self.band[1], 1e9), self.band[2])
+        p["u_band"].value = (self.band[0], min(self.band[1], 1e9))
         # the blades' depth from the side over the pass's heights (volume.glsl missed_blades)
         top = min(self.band[1], float(t.height))
         column = t.canopy.side_column(self.band[0]) - t.canopy.side_column(top)

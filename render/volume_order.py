@@ -20,7 +20,7 @@ import numpy as np
 DEPTH_BANDS = 8  # bands of distance when there are several volume passes
 HEIGHT_BANDS = 2  # bands of height where grass types grow among each other
 INF = float("inf")
-Band = tuple[float, float, float]  # heights over the ground from, to; the share of the blades
+Band = tuple[float, float]  # heights over the ground from, to
 Part = tuple[tuple[int, int], Band]  # (band of height, turn in it), band
 
 
@@ -62,11 +62,11 @@ def stacked_parts(beneath: list[float | None], bands: int = HEIGHT_BANDS) -> lis
     passes of all types sorted by order are drawn in that order. Without one type standing
     over another, each type is one pass. Else the heights up to the tallest grass another
     stands over are cut into `bands` bands (the last reaches up to the sky), each type draws
-    each band with all of its blades there, and in each band the type standing over another
+    each band, and in each band the type standing over another
     goes first or second by turns, second in the top band."""
     among = [b for b in beneath if b is not None]
     if not among:
-        return [[((0, 0), (0.0, INF, 1.0))] for _ in beneath]
+        return [[((0, 0), (0.0, INF))] for _ in beneath]
     edges = [max(among) * k / bands for k in range(bands)] + [INF]
     out = []
     for b in beneath:
@@ -74,6 +74,6 @@ def stacked_parts(beneath: list[float | None], bands: int = HEIGHT_BANDS) -> lis
         parts: list[Part] = []
         for k in range(bands):
             taller_first = (bands - 1 - k) % 2 == 1
-            parts.append(((k, 0 if over == taller_first else 1), (edges[k], edges[k + 1], 1.0)))
+            parts.append(((k, 0 if over == taller_first else 1), (edges[k], edges[k + 1])))
         out.append(parts)
     return out

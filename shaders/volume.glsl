@@ -57,10 +57,9 @@ uniform float u_slices;        // p_num: slices per direction
 uniform int u_max_steps;
 uniform float u_opaque;        // early-exit opacity
 uniform float u_lod_scale;     // pixel footprint per unit distance × texels per patch unit
-uniform float u_depth_alpha;   // how opaque the ray is where its depth is taken
-// the heights over the ground this pass counts, and the share of their blades (grass types that
-// grow among each other are drawn in bands of height: render/volume_order.py)
-uniform vec3 u_band;
+// the heights over the ground this pass counts (grass types that grow among each other are
+// drawn in bands of height: render/volume_order.py)
+uniform vec2 u_band;
 // the blades' depth from the side per patch length, summed over this pass's heights
 // (core/canopy.py side_column)
 uniform float u_band_column;
@@ -142,7 +141,7 @@ void gather(vec4 c, float ao, float l, vec2 xz) {
 // `keep`: the share of the blades kept there (the density, the LOD transition).
 vec4 missed_blades(float missed, float keep, float tan_up, vec3 met) {
     float a = (1.0 - exp(-missed * u_band_column / max(tan_up, 1e-3))) * keep;
-    return vec4(met, 1.0 - pow(max(1.0 - a, 1e-4), u_band.z));
+    return vec4(met, a);
 }
 
 // The horizontal slice as a layer of the volume at height u_floor (render/volume.py): colour,
@@ -254,11 +253,9 @@ void main() {
     const float CROSSING_GAIN = 1.0;
     float crossing = CROSSING_GAIN * length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
     float depth_lambda = -1.0;
-    // The depth is that of the point where the ray became u_depth_alpha opaque: half, for the
-    // fragment's own test against what was drawn before it (ground, blades, image-based
-    // grass); where this volume's depth is written for another grass type's volume drawn
-    // after it (render/frame.py), opaque, so that it hides that grass only where it covers it.
-    float depth_alpha = u_depth_alpha;
+    // The depth is that of the point where the ray became half opaque, for the fragment's own
+    // test against what was drawn before it (ground, blades, image-based grass).
+    const float depth_alpha = 0.5;
     float band_top = min(u_band.y, u_height);
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
@@ -318,13 +315,13 @@ void main() {
         if (all(greaterThanEqual(floor_at.xz, vec2(0.0))) && all(lessThanEqual(floor_at.xz, v_size))) {
             floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
                                       facing * slope_l, floor_ao_l, floor_keep);
-            // in this pass's band of heights, with its share of the blades (u_band); on sloping
-            // ground the ray meets their area from above over the vertical part of its run
-            // through the layer, n_y u_y / (u · n) of the top view's depth (as image.glsl)
+            // in this pass's band of heights (u_band); on sloping ground the ray meets their
+            // area from above over the vertical part of its run through the layer,
+            // n_y u_y / (u · n) of the top view's depth (as image.glsl)
             bool in_band = u_floor >= u_band.x && u_floor < min(u_band.y, u_height + 1.0);
             float top_run = ground_up.y * max(-d.y, 0.0) / max(dot(-d, ground_up), 1e-3);
             floor_sample.a = in_band
-                ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), u_band.z * top_run) : 0.0;
+                ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), top_run) : 0.0;
             if (!in_band) floor_keep = 0.0;
             // where grass of a type beneath grows, its volume holds what the ray meets below
             floor_sample.a *= 1.0 - clamp(dot(textureLod(u_design, vec3(design_uv(v_config,
@@ -386,7 +383,7 @@ void main() {
         rate_lambda = lambda;
         prev_y = y;
         // under the ground the ray is hidden by the ground drawn before: nothing after counts
-        // (nor, for a pass of the heights over another grass, under those heights: u_band)
+        // (nor, for a pass of a band of heights, under that band: u_band)
         if (hi < u_band.x) break;
         if (y >= 0.0) reached = lambda;
         if (lo > band_top) {
@@ -431,7 +428,7 @@ void main() {
         // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
         float share = lod_share(data.a, side_spread, density,
                                 lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
-        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share * inside * u_band.z);
+        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share * inside);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
             if (dot(n, -d) < 0.0) n = -n;

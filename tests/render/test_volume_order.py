@@ -32,13 +32,12 @@ def test_types_among_each_other_are_drawn_in_bands_of_height_by_turns():
     beneath = beneath_heights([0.5, 0.2, None], [0.7, 0.3, 0.0])
     assert beneath == [0.3, None, None]
     assert beneath_heights([0.4, 0.4], [0.6, 0.6]) == [None, 0.6]  # as high: the later over
-    assert stacked_parts([None, None]) == [[((0, 0), (0.0, INF, 1.0))]] * 2  # one pass each
+    assert stacked_parts([None, None]) == [[((0, 0), (0.0, INF))]] * 2  # one pass each
     tall, short, none = stacked_parts(beneath, bands=3)
     for parts in (tall, short, none):
         bands = [band for _, band in parts]
         assert bands[0][0] == 0.0 and bands[-1][1] == INF  # every height once, low to high
         assert all(a[1] == b[0] for a, b in itertools.pairwise(bands))
-        assert all(share == 1.0 for _, _, share in bands)
     order = sorted((key, name) for name, parts in (("tall", tall), ("short", short))
                    for key, _ in parts)  # fmt: skip
     assert [name for _, name in order] == ["short", "tall", "tall", "short", "short", "tall"]
