@@ -210,3 +210,22 @@ def threshold_spread(threshold: np.ndarray, alpha: np.ndarray, count: int) -> np
         w = cover[k][..., 0]
         out[k] = float((sd * w).sum() / max(w.sum(), 1e-12))
     return out
+
+
+def row_depths(levels: list[np.ndarray], count: int) -> np.ndarray:
+    """((len(levels), rows) float32) Of `count` vertical slices' mip levels, stacked along rows
+    as stacked_slice_mips gives them (rows run upward): per level and row, the optical depth
+    −ln(1 − ā) of the row's mean alpha ā (the covered share, 8 bits as the texture stores
+    it), averaged over the slices, at the base level's row centres (linear between a coarser
+    level's rows, as the texture is sampled). A reduced level averages alpha over rows whose
+    depths differ; a ray crossing the slices at those heights meets the mean of their depths,
+    which the base level's rows give (shaders/volume.glsl)."""
+    rows = levels[0].shape[0] // count
+    centres = (np.arange(rows) + 0.5) / rows
+    out = np.empty((len(levels), rows), np.float32)
+    for k, level in enumerate(levels):
+        alpha = np.minimum(to_uint8(level[..., 3]) / 255.0, 0.999)
+        per_row = level.shape[0] // count
+        mean = (-np.log1p(-alpha.reshape(count, per_row, -1).mean(axis=2))).mean(axis=0)
+        out[k] = np.interp(centres, (np.arange(per_row) + 0.5) / per_row, mean)
+    return out

@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from core.canopy import Canopy
-from core.mipmaps import stacked_slice_mips, threshold_spread, weighted_chain
+from core.mipmaps import row_depths, stacked_slice_mips, threshold_spread, weighted_chain
 from render.conversion import SlicedPatch, SliceLayers
 from render.textures import texture_with_mips
 
@@ -51,10 +51,15 @@ class LayerTextures:
     # 4.10) leave the blades' mean colour
     mean_color: np.ndarray
     mean_normal: np.ndarray  # (3,): the data's normal over the whole family (smallest level)
+    # vertical slices: their rows' mean optical depth per mip level (core/mipmaps.py
+    # row_depths), one level a row of the texture, linear along the height and between levels
+    depths: moderngl.Texture | None = None
 
     def release(self) -> None:
         self.color.release()
         self.data.release()
+        if self.depths is not None:
+            self.depths.release()
 
 
 def canonical_data(layers: SliceLayers) -> np.ndarray:
@@ -91,6 +96,7 @@ class LayerLevels:
     repeat_v: bool
     spread: np.ndarray  # per mip level (core/mipmaps.py: threshold_spread)
     mean_color: np.ndarray  # (3,)
+    depths: np.ndarray | None = None  # vertical slices: core/mipmaps.py row_depths
 
 
 def layer_levels(layers: SliceLayers, top: bool = False) -> LayerLevels:
@@ -105,6 +111,7 @@ def layer_levels(layers: SliceLayers, top: bool = False) -> LayerLevels:
     return LayerLevels(
         color_levels, data_levels, n, repeat_v=top, spread=spread,
         mean_color=color_levels[-1][..., :3].reshape(-1, 3).mean(axis=0),
+        depths=None if top else row_depths(color_levels, n),
     )  # fmt: skip
 
 
@@ -115,7 +122,15 @@ def upload_levels(ctx: moderngl.Context, levels: LayerLevels) -> LayerTextures:
         tex.repeat_x = True  # slices tile along u like the patch
         tex.repeat_y = levels.repeat_v  # only the top slice tiles along v
     mean_normal = levels.data[-1][..., :3].reshape(-1, 3).mean(axis=0) * 2.0 - 1.0
-    return LayerTextures(color, data, levels.count, levels.spread, levels.mean_color, mean_normal)
+    depths = None
+    if levels.depths is not None:
+        table = np.ascontiguousarray(levels.depths, np.float32)
+        depths = ctx.texture((table.shape[1], table.shape[0]), 1, table.tobytes(), dtype="f4")
+        depths.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        depths.repeat_x = depths.repeat_y = False
+    return LayerTextures(
+        color, data, levels.count, levels.spread, levels.mean_color, mean_normal, depths
+    )
 
 
 @dataclass
@@ -155,6 +170,9 @@ def _stacked(first: LayerLevels, second: LayerLevels) -> LayerLevels:
         repeat_v=False,
         spread=0.5 * (first.spread + second.spread),
         mean_color=0.5 * (first.mean_color + second.mean_color),
+        depths=None
+        if first.depths is None or second.depths is None
+        else 0.5 * (first.depths + second.depths),
     )
 
 

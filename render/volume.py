@@ -118,12 +118,15 @@ class VolumeRenderer(InstancedRenderer):
             self.facing.use(frame.lighting, frame.wind.enabled)
             p["u_facing"].value = FACING_UNIT
         bind_slopes(p, self.slope, frame.lighting)
+        if t.sides.depths is None:
+            raise ValueError("vertical slices uploaded without their rows' depths")
         for unit, (name, tex) in enumerate(
             [
                 ("u_side_color", t.sides.color),
                 ("u_side_data", t.sides.data),
                 ("u_top_color", t.top.color),
                 ("u_top_data", t.top.data),
+                ("u_side_depths", t.sides.depths),  # unit 4: free (render/uniforms.py)
             ]
         ):
             p[name].value = unit

@@ -65,6 +65,9 @@ uniform vec2 u_band;
 uniform float u_band_column;
 // what a view from each elevation meets of the blades' side (core/canopy.py side_colors)
 uniform vec3 u_side_colors[8];
+// the vertical slices' rows' depth −ln(1 − mean alpha) per mip level: x along the height,
+// y one level a row, the base level first (core/mipmaps.py row_depths)
+uniform sampler2D u_side_depths;
 // the vertical slices, stacked along v: the N across x (u runs along z), then the N across z
 // (u runs along x); one texture for both, so that a step fetches once (render/slices.py)
 uniform sampler2D u_side_color;
@@ -102,11 +105,16 @@ flat in vec2 v_ground;
 
 out vec4 f_color;
 
-// slice: 0 … N-1 across x, N … 2N-1 across z
-vec2 atlas_uv(float u, float v, float slice, float rows, float lod) {
-    // half a texel of the coarser mip level read: the filter must not reach the next slice
+// v (0 … 1 up a slice) kept half a texel of the coarser mip level read inside the slice: the
+// filter must not reach the next one
+float slice_v(float v, float rows, float lod) {
     float half_row = min(0.5 * exp2(ceil(lod)) / rows, 0.5);
-    return vec2(u, (slice + clamp(v, half_row, 1.0 - half_row)) / (2.0 * u_slices));
+    return clamp(v, half_row, 1.0 - half_row);
+}
+
+// slice: 0 … N-1 across x, N … 2N-1 across z
+vec2 atlas_uv(float u, float v, float slice) {
+    return vec2(u, (slice + v) / (2.0 * u_slices));
 }
 
 // What the ray has gathered, front to back (eqs. 5.19-5.20), kept as the sums that shade_sum
@@ -416,7 +424,8 @@ void main() {
         }
         if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
         float u = fract((hit_x ? s.y * at.y : s.x * at.x));
-        vec2 uv = atlas_uv(u, rest.x / u_height, hit_x ? slice : u_slices + slice, rows, lod);
+        float v = slice_v(rest.x / u_height, rows, lod);
+        vec2 uv = atlas_uv(u, v, hit_x ? slice : u_slices + slice);
         vec4 c = textureLod(u_side_color, uv, lod);
         vec4 data = textureLod(u_side_data, uv, lod);
         float density = u_density * v_density * gd.y;
@@ -428,7 +437,18 @@ void main() {
         // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
         float share = lod_share(data.a, side_spread, density,
                                 lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
-        c.a = 1.0 - pow(1.0 - clamp(c.a, 0.0, 0.999), crossing * share * inside);
+        // A reduced level's texel averages alpha over rows whose depths differ (the lower
+        // rows all but opaque, the upper ones nearly empty); a ray descending through the
+        // grass crosses the slices at all those heights and meets the mean of their depths,
+        // not the depth of their mean alpha, which counted too few (the soil showed on the
+        // landscape's hill, seen from its valley). The texel's depth is scaled by its row's
+        // at the base level over its row's at the level read: the row keeps the base level's
+        // depth at this height, the texel where along the slice the blades stand.
+        float levels = float(textureSize(u_side_depths, 0).y);
+        float row = textureLod(u_side_depths, vec2(v, (lod + 0.5) / levels), 0.0).r;
+        float base = textureLod(u_side_depths, vec2(v, 0.5 / levels), 0.0).r;
+        float depth = -log(1.0 - clamp(c.a, 0.0, 0.999)) * (base + 1e-3) / (row + 1e-3);
+        c.a = 1.0 - exp(-depth * crossing * share * inside);
         if (c.a > 0.003) {
             vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
             if (dot(n, -d) < 0.0) n = -n;

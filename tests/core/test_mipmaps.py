@@ -120,3 +120,24 @@ def test_upper_rows_hide_the_lower_ones_in_a_vertical_slices_levels():
     np.testing.assert_allclose(upper[:3], 1.0, atol=1e-6)
     np.testing.assert_allclose(plain[:3], 0.5, atol=1e-6)
     assert upper[3] == plain[3]
+
+
+def test_a_reduced_levels_rows_hold_less_depth_than_the_rows_they_average():
+    """core/mipmaps.py row_depths: per level and row the depth −ln(1 − ā) of each slice's
+    row-mean alpha, averaged over the slices. A reduced level averages alpha over two rows, one
+    dense and one empty: a ray crossing the slices at both heights meets the mean of their
+    depths, more than the depth of their mean alpha that the reduced level holds (why the
+    volume scales a reduced texel's depth by its row's at the base level, shaders/volume.glsl)."""
+    from core.mipmaps import row_depths, stacked_slice_mips
+
+    stack = np.zeros((2, 4, 8, 4), np.float32)
+    stack[:, 0::2, :, 3] = 0.9  # rows 0 and 2 dense, 1 and 3 empty
+    stack[1, :, ::2, 3] = 0.0  # the second slice has every other column empty
+    table = row_depths(stacked_slice_mips(stack, 3), 2)
+    assert table.shape == (3, 4)
+    a = 230 / 255  # 0.9 as 8 bits
+    dense = 0.5 * (-np.log(1.0 - a) - np.log(1.0 - 0.5 * a))
+    np.testing.assert_allclose(table[0], [dense, 0.0, dense, 0.0], rtol=1e-5)
+    reduced = 0.5 * (-np.log(1.0 - 0.5 * a) - np.log(1.0 - 0.25 * a))
+    np.testing.assert_allclose(table[1], reduced, rtol=1e-2)  # one row per pair of rows
+    assert reduced < 0.6 * (0.5 * dense)  # the two rows' mean depth

@@ -54,9 +54,10 @@ def test_rays_up_the_landscapes_hill_count_all_the_grass_they_cross(headless):
     """The landscape's hill seen from its valley: rays rise up the slope and meet the grass
     near where they enter their cuboids. Counted a slab's length about each crossing, the
     rays' ends went uncounted and the soil showed in rings: 5.8 % of the blocks below the sky
-    more than half soil. Density is 1 everywhere, but this 800-blade grass does not hide the
-    soil where the hill faces the eye steeply (on the ramp above, of the same grass, the blades
-    leave up to a sixth of it): a few blocks there are more than half soil."""
+    more than half soil. Then 2.4 %: the far levels' reduced texels averaged alpha over heights
+    whose depths differ, and a ray crossing the slices at all those heights meets the mean of
+    their depths; scaled to their rows' depth at the base level, none (density is 1
+    everywhere: the issue's limit is 1 %)."""
     from app.sweep import MAGENTA
     from core.quality import bare_blocks
 
@@ -72,4 +73,4 @@ def test_rays_up_the_landscapes_hill_count_all_the_grass_they_cross(headless):
     soil = renderer.render(camera, size, measure=False)[0]
     figures = bare_blocks(shaded, soil, techniques)
     assert figures["terrain_blocks"] > 1000
-    assert figures["bare_blocks"] <= 0.03
+    assert figures["bare_blocks"] <= 0.01
