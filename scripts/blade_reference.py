@@ -5,11 +5,12 @@ the same focal length aimed at a pixel (`--window X,Y,HEIGHT`: the LOD levels st
 and only that part of the frame is drawn, so that all-geometry is affordable far away).
 
     .venv/bin/python scripts/blade_reference.py --case landscape/valley --window 240,95,48
-    .venv/bin/python scripts/blade_reference.py --case meadow/default --wind --supersample 8
+    .venv/bin/python scripts/blade_reference.py --case meadow/default --wind --supersample 8 --block 16
 
 Prints one JSON line: the soil share (the soil under the grass drawn magenta) of each frame;
 with --wind, per representation's region the mean per-pixel change between the wind's moments
-0 and 0.5 s. The region is the LOD frame's (technique colours); all-geometry of a landscape
+0 and 0.5 s, and with --block K that of the means of K × K blocks wholly in the region (the
+gusts' waves, without the change of single blades inside a pixel). The region is the LOD frame's (technique colours); all-geometry of a landscape
 takes minutes."""
 
 from __future__ import annotations
@@ -23,6 +24,12 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+
+def blocks(image: np.ndarray, k: int) -> np.ndarray:
+    """The means of the k × k blocks of an (h, w, c) image (the ragged edge dropped)."""
+    h, w = image.shape[0] // k * k, image.shape[1] // k * k
+    return image[:h, :w].reshape(h // k, k, w // k, k, -1).mean(axis=(1, 3))
 
 
 def main() -> None:
@@ -39,6 +46,7 @@ def main() -> None:
     parser.add_argument("--supersample", type=int, default=1)
     parser.add_argument("--window", help="X,Y,HEIGHT: a window of the frame about pixel X, Y")
     parser.add_argument("--wind", action="store_true")
+    parser.add_argument("--block", type=int, default=0, help="K: also the change of K × K blocks")
     args = parser.parse_args()
     case = next((c for c in cases() if c.name == args.case), None)
     if case is None:
@@ -98,6 +106,13 @@ def main() -> None:
             for region, mask in regions.items():
                 if mask.sum() >= 64:
                     row[f"change_{region}"] = round(float(change[mask].mean()), 5)
+                if args.block > 1:
+                    whole = blocks(mask[..., None].astype(np.float64), args.block)[..., 0] > 0.999
+                    moved = np.abs(blocks(f["later"], args.block) - blocks(f["shaded"], args.block))
+                    if whole.any():
+                        row[f"block_change_{region}"] = round(
+                            float(moved.mean(-1)[whole].mean()), 5
+                        )
         result[name] = row
     print(json.dumps(result))
 
