@@ -279,13 +279,21 @@ void main() {
     // the slices (the DEM; tests/render/test_displacement.py). A search from the flat plane
     // alone jumped past hill crests to the ground beyond them.
     float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
-    float floor_lambda = (u_floor >= 0.0 && d.y < -1e-4 && e.y > floor_y) ? (floor_y - e.y) / d.y : 1e30;
+    // How fast the ray's height over the ground falls along it, by the ground's slope where it
+    // enters: a ray rising up a hill that rises faster falls into the grass like one falling
+    // onto flat ground. Taken by d.y alone, such rays never met the layer, nor were their runs
+    // too short for a crossing counted: the soil showed in dashes along the cuboids' walls on
+    // the landscape's hill, seen from its valley, where a ray entered the grass just before
+    // the wall (docs/far-field.md).
+    float descent = d.y - dot(0.5 * slope, d.xz);
+    float floor_lambda = (u_floor >= 0.0 && descent < -1e-4 && e.y > floor_y)
+                       ? (floor_y - e.y) / descent : 1e30;
     if (floor_lambda < 1e29) {
         float a = 0.0, ha = e.y - floor_y, b = floor_lambda, hb = -1.0;
         bool below = false;
         for (int k = 0; k < 5; ++k) {
             float x = below ? a + (b - a) * ha / (ha - hb)
-                    : (k < 2 ? floor_lambda * float(k + 1) / 2.0 : a - ha / d.y);
+                    : (k < 2 ? floor_lambda * float(k + 1) / 2.0 : a - ha / descent);
             vec3 q = e + x * d;
             float hx = q.y - (u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x);
             if (hx > 0.0) {
@@ -297,7 +305,7 @@ void main() {
                 below = true;
             }
         }
-        floor_lambda = below ? a + (b - a) * ha / (ha - hb) : a - ha / d.y;
+        floor_lambda = below ? a + (b - a) * ha / (ha - hb) : a - ha / descent;
     }
     // The horizontal slice's sample, shaded here once, before the loop, and composited when
     // the ray reaches it: inside the loop SIMD lanes meet it at different steps, and its
@@ -479,8 +487,11 @@ void main() {
         // heights to where it reaches the ground or leaves the cuboid
         float fall = (entry_h - u_floor) / max(distance(e, floor_at), 1e-6);
         float start = entry_h > band_top ? (entry_h - band_top) / max(fall, 1e-6) : 0.0;
-        float run = min(entry_h / max(fall, 1e-6), exit_lambda) - start;
-        float missed = run > 1e-6 ? clamp(1.0 - counted / run, 0.0, 1.0) : 0.0;
+        // of the whole run, the part in this cuboid its crossings did not count: the cuboid
+        // beyond a wall the ray leaves by counts the rest
+        float full = entry_h / max(fall, 1e-6) - start;
+        float run = min(full + start, exit_lambda) - start;
+        float missed = full > 1e-6 ? clamp((run - counted) / full, 0.0, 1.0) : 0.0;
         gather(missed_blades(missed, floor_keep, floor_tan, floor_met), floor_ao_l.x, floor_ao_l.y,
                floor_at.xz);
     }
