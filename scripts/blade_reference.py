@@ -7,9 +7,9 @@ and only that part of the frame is drawn, so that all-geometry is affordable far
     .venv/bin/python scripts/blade_reference.py --case landscape/valley --window 240,95,48
     .venv/bin/python scripts/blade_reference.py --case meadow/default --wind --supersample 8 --block 16
 
-Prints one JSON line: the soil share (the soil under the grass drawn magenta) of each frame;
-with --wind, per representation's region the mean per-pixel change between the wind's moments
-0 and 0.5 s, and with --block K that of the means of K × K blocks wholly in the region (the
+Prints one JSON line: the soil share (the soil under the grass drawn magenta) and the mean
+colour of each frame; with --wind, per representation's region the mean per-pixel change
+between the wind's moments 0 and 0.5 s, and with --block K that of the means of K × K blocks wholly in the region (the
 gusts' waves, without the change of single blades inside a pixel). The region is the LOD
 frame's (technique colours); all-geometry of a landscape takes minutes."""
 
@@ -100,7 +100,10 @@ def main() -> None:
         moved = (f["soil"][..., 2] - f["soil"][..., 1]) - (
             f["shaded"][..., 2] - f["shaded"][..., 1]
         )
-        row = {"soil": round(float(np.clip(moved, 0.0, 1.0).mean()), 4)}
+        row = {
+            "soil": round(float(np.clip(moved, 0.0, 1.0).mean()), 4),
+            "rgb": [round(float(v), 4) for v in f["shaded"].reshape(-1, 3).mean(axis=0)],
+        }
         if args.wind:
             change = np.abs(f["later"] - f["shaded"]).mean(axis=-1)
             for region, mask in regions.items():
