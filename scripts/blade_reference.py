@@ -9,9 +9,10 @@ and only that part of the frame is drawn, so that all-geometry is affordable far
 
 Prints one JSON line: the soil share (the soil under the grass drawn magenta) and the mean
 colour of each frame; with --wind, per representation's region the mean per-pixel change
-between the wind's moments 0 and 0.5 s, and with --block K that of the means of K × K blocks wholly in the region (the
-gusts' waves, without the change of single blades inside a pixel). The region is the LOD
-frame's (technique colours); all-geometry of a landscape takes minutes."""
+between the wind's moments 0 and 0.5 s, and with --block K that of the means of K × K blocks
+wholly in the region (the gusts' waves, without the change of single blades inside a pixel).
+The region is the LOD frame's (technique colours); all-geometry of a landscape takes
+minutes."""
 
 from __future__ import annotations
 
