@@ -112,6 +112,59 @@ def ridged_hills(size: int, seed: int = 3) -> np.ndarray:
     return (h - h.min()) / max(float(np.ptp(h)), 1e-9)
 
 
+# -- the image-based slices' grids ------------------------------------------------------------
+# An image-based (macro-)cell on uneven ground is drawn as a grid of n × n quads whose vertices
+# follow the ground (6.4.4); between them its triangles are chords of the ground. A chord of a
+# surface whose second directional derivatives are at most M strays from it by at most
+# M · r² / 2, r the triangle's circumradius: M (a² + b²) / 8 for half of an a × b quad, and never
+# more than the cell's height range. A grid is fine enough where that error, seen from the eye,
+# is under half a pixel; far away a single cell needs a quad or two where a fixed grid of 6 × 6
+# gave llvmpipe dozens of triangles of a few pixels each.
+SLICE_GRIDS = (1, 2, 3, 4, 6)  # the grids an image-based slice is drawn with, quads per side
+
+
+def ground_curvature(heights: np.ndarray, scale: float, columns: int, rows: int) -> float:
+    """The largest |h_xx| + |h_xz| + |h_zz| of the ground (world units, cells 1 wide), from the
+    height map's second differences (rows along z; values 0 … 1 times `scale`): a bound on
+    any second directional derivative of the surface."""
+    h = np.asarray(heights, np.float64)
+    if h.shape[0] < 3 or h.shape[1] < 3 or scale <= 0.0:
+        return 0.0
+    dx, dz = columns / h.shape[1], rows / h.shape[0]
+    hxx = np.abs(h[1:-1, 2:] - 2.0 * h[1:-1, 1:-1] + h[1:-1, :-2]) / (dx * dx)
+    hzz = np.abs(h[2:, 1:-1] - 2.0 * h[1:-1, 1:-1] + h[:-2, 1:-1]) / (dz * dz)
+    hxz = np.abs(h[2:, 2:] - h[2:, :-2] - h[:-2, 2:] + h[:-2, :-2]) / (4.0 * dx * dz)
+    return float((hxx + hxz + hzz).max()) * scale
+
+
+def slice_grids(
+    instances: np.ndarray,
+    eye: np.ndarray,
+    pixel: float,
+    curvature: float,
+    grids: tuple[int, ...] = SLICE_GRIDS,
+    tolerance: float = 0.5,
+) -> np.ndarray:
+    """Per instance (core/grid.py INSTANCE_DTYPE), the coarsest of `grids` whose chords stray
+    from the ground by less than `tolerance` pixels seen from `eye` (world x, y, z) at its
+    nearest point, `pixel` radians a pixel; the finest where none does."""
+    origin = instances["origin"].astype(np.float64)
+    size = instances["size"].astype(np.float64)
+    low = instances["ground"][:, 0].astype(np.float64)
+    spread = instances["ground"][:, 1].astype(np.float64)
+    eye = np.asarray(eye, np.float64)
+    gap_x = np.maximum(np.maximum(origin[:, 0] - eye[0], eye[0] - origin[:, 0] - size[:, 0]), 0.0)
+    gap_z = np.maximum(np.maximum(origin[:, 1] - eye[2], eye[2] - origin[:, 1] - size[:, 1]), 0.0)
+    gap_y = np.maximum(np.maximum(low - eye[1], eye[1] - low - spread), 0.0)
+    allowed = tolerance * pixel * np.sqrt(gap_x**2 + gap_y**2 + gap_z**2)
+    out = np.full(len(instances), grids[-1], np.int32)
+    for n in reversed(grids):
+        quad = (size[:, 0] / n) ** 2 + (size[:, 1] / n) ** 2
+        error = np.minimum(curvature * quad / 8.0, spread)
+        out[error <= allowed] = n
+    return out
+
+
 # -- the ground mesh under the grass ---------------------------------------------------------
 # The ground is drawn as a triangle grid whose vertices sample the height map; between them
 # its triangles are chords of the bilinear surface, and in hollows the chords lie above it and

@@ -9,7 +9,7 @@ import numba
 import numpy as np
 
 from core.grid import INSTANCE_DTYPE
-from core.heights import cell_ranges
+from core.heights import cell_ranges, ground_curvature
 from core.lod import ALL_IN
 from core.quadtree import QuadTree
 from core.tiling import mirror_sign, noise_map
@@ -40,14 +40,18 @@ class Terrain:
     tree: QuadTree = field(init=False)
     cell_min: np.ndarray = field(init=False)  # (columns, rows) lowest ground per cell
     cell_max: np.ndarray = field(init=False)
+    curvature: float = field(init=False)  # core/heights.py ground_curvature (0: flat)
 
     def __post_init__(self) -> None:
         if self.height_scale < 0:
             raise ValueError(f"height scale {self.height_scale:g} must not be negative")
         if self.heights is not None and self.height_scale > 0:
             lo, hi = cell_ranges(self.heights, self.height_scale, self.columns, self.rows)
+            curvature = ground_curvature(self.heights, self.height_scale, self.columns, self.rows)
         else:
             lo = hi = np.zeros((self.columns, self.rows), np.float32)
+            curvature = 0.0
+        object.__setattr__(self, "curvature", curvature)
         # C order: the compiled traversal is compiled for that layout once
         object.__setattr__(self, "cell_min", np.ascontiguousarray(lo, np.float32))
         object.__setattr__(self, "cell_max", np.ascontiguousarray(hi, np.float32))

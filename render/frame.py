@@ -8,6 +8,7 @@ timed as a whole.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 
@@ -396,7 +397,10 @@ class FramePipeline:
         )
 
         drawn = []
+        pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
+        curvature = self.terrain.curvature if self.terrain is not None else 0.0
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
+            grass.image.view = (frame.eye, pixel, curvature)  # its slices' grids
             tu = time.perf_counter()
             batches = grass.upload(selected, frame.eye)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0

@@ -1,8 +1,9 @@
 """Image-based grass renderer (thesis 5.3): one quad per (macro-)cell, textured with the
 horizontal slice; its alpha covers the pixel's samples under MSAA like the geometry's
 (shaders/_coverage.glsl). On uneven ground a cell's slice
-is a grid whose vertices follow the height map (6.4.4); cells on flat ground are one quad, as in
-the thesis, drawn in a second instanced call."""
+is a grid whose vertices follow the height map (6.4.4), as fine as the ground's bends seen from
+the eye need (core/heights.py slice_grids); cells on flat ground are one quad, as in the thesis.
+Each grid is one instanced call."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
+from core.heights import SLICE_GRIDS, slice_grids
 from core.lod import NO_FADE
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
@@ -22,7 +24,6 @@ from render.uniforms import FrameUniforms
 # Canopy.shade_met); taken at fixed heights (0.7 of the grass from above, its top eighth towards
 # the horizon) it lit the DEM's far hills 0.81 where the blades show 0.63 of the ambient light
 # (scripts/region_views.py).
-GRID = 6  # quads per side of the slice of a (macro-)cell on uneven ground
 
 
 class _Batch(InstancedRenderer):
@@ -74,9 +75,12 @@ class ImageRenderer:
         self.program = load_program(ctx, "image.glsl")
         # On llvmpipe the grid's small triangles cost most of the pass (every 4 × 4 pixel block
         # a triangle touches is shaded whole): flat cells get one quad, which lies within
-        # flat_ground of the ground wherever that varies by less, so it stays above it.
-        self.flat = _Batch(ctx, self.program, 1)
-        self.uneven = _Batch(ctx, self.program, GRID)
+        # flat_ground of the ground wherever that varies by less, so it stays above it; the
+        # others the coarsest grid whose chords stray from the ground by under half a pixel
+        # seen from the eye (`view`), or the finest without one.
+        self.batches = {n: _Batch(ctx, self.program, n) for n in SLICE_GRIDS}
+        # (eye, radians a pixel, the ground's curvature: core/terrain.py), set each frame
+        self.view: tuple[np.ndarray, float, float] | None = None
         self.instance_count = 0
         self.textures: SliceTextures | None = None
         self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
@@ -127,10 +131,14 @@ class ImageRenderer:
         return self.lift + self.canopy * float(self.textures.height)
 
     def set_instances(self, instances: np.ndarray) -> None:
-        """The cells to draw: an INSTANCE_DTYPE array, split by the unplanarity of their ground."""
-        flat = instances["ground"][:, 1] <= self.flat_ground
-        self.flat.set_instances(instances[flat])
-        self.uneven.set_instances(instances[~flat])
+        """The cells to draw: an INSTANCE_DTYPE array, split by the grid their ground needs."""
+        finest = SLICE_GRIDS[-1]
+        grids = np.full(instances.size, finest, np.int32)
+        if self.view is not None and instances.size:
+            grids = slice_grids(instances, *self.view)
+        grids[instances["ground"][:, 1] <= self.flat_ground] = 1
+        for n, batch in self.batches.items():
+            batch.set_instances(instances[grids == n])
         self.instance_count = int(instances.size)
 
     def prepare(self, frame: FrameUniforms) -> None:
@@ -173,12 +181,12 @@ class ImageRenderer:
 
     def draw(self) -> None:
         if self.textures is not None:
-            self.flat.draw()
-            self.uneven.draw()
+            for batch in self.batches.values():
+                batch.draw()
 
     def finalize(self) -> None:
         """Nothing to undo: the shader sets the samples its fragments cover."""
 
     def release(self) -> None:
-        self.flat.release()
-        self.uneven.release()
+        for batch in self.batches.values():
+            batch.release()

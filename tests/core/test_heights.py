@@ -1,16 +1,20 @@
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from core.heights import (
+    SLICE_GRIDS,
     bilinear,
     cell_ranges,
     hills,
     mesh_sink,
     mesh_size,
     quad_excess,
+    slice_grids,
     vertex_sink,
 )
+from core.terrain import Terrain
 
 
 def test_bilinear_hits_texel_centres_and_interpolates_between():
@@ -103,3 +107,73 @@ def test_an_edit_redoes_only_the_rows_it_reaches_with_the_same_result():
     edited[40:50, 10:30] += 0.2
     excess[38:52] = quad_excess(edited, quads, (38, 52))
     assert np.array_equal(vertex_sink(excess), mesh_sink(edited, quads)[0])
+
+
+def _chord_error(heights, scale, terrain, instance, n, samples=36):
+    """The most the n × n grid of chords over an instance's cell strays from its ground, from
+    samples (triangles split as render/ground.py grid_mesh splits them)."""
+    ox, oz = instance["origin"] - np.asarray(terrain.origin, np.float32)
+    sx, sz = instance["size"]
+
+    def ground(x, z):  # cell coordinates -> world height
+        return bilinear(heights, x / terrain.columns, z / terrain.rows) * scale
+
+    t = (np.arange(samples) + 0.5) / samples
+    fx, fz = np.meshgrid(t * n, t * n, indexing="ij")
+    a, b = np.minimum(np.floor(fx), n - 1), np.minimum(np.floor(fz), n - 1)
+    fu, fv = fx - a, fz - b
+
+    def corner(i, j):
+        return ground(ox + (a + i) * sx / n, oz + (b + j) * sz / n)
+
+    h00, h10, h01, h11 = corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)
+    lower = h00 + fu * (h10 - h00) + fv * (h01 - h00)
+    upper = h11 + (1.0 - fu) * (h01 - h11) + (1.0 - fv) * (h10 - h11)
+    chord = np.where(fu + fv <= 1.0, lower, upper)
+    return float(np.abs(chord - ground(ox + fx * sx / n, oz + fz * sz / n)).max())
+
+
+@pytest.mark.parametrize("distance", [6.0, 20.0, 60.0])
+def test_slice_grids_keep_their_chords_within_half_a_pixel_of_the_ground(distance):
+    heights = hills(64, seed=5)
+    terrain = Terrain.centred(24, 24, heights=heights, height_scale=3.0)
+    ix, iz = np.meshgrid(np.arange(0, 24, 2), np.arange(0, 24, 2), indexing="ij")
+    singles = terrain.cells(ix.ravel(), iz.ravel())
+    eye = np.array([0.0, 3.0 + distance, -12.0 - distance])
+    pixel = 2.0 * np.tan(np.radians(25.0)) / 270
+    grids = slice_grids(singles, eye, pixel, terrain.curvature)
+    assert set(np.unique(grids)) <= set(SLICE_GRIDS)
+    checked = 0
+    for instance, n in zip(singles, grids, strict=True):
+        nearest = np.array(
+            [
+                np.clip(eye[0], instance["origin"][0], instance["origin"][0] + instance["size"][0]),
+                np.clip(eye[1], instance["ground"][0], instance["ground"].sum()),
+                np.clip(eye[2], instance["origin"][1], instance["origin"][1] + instance["size"][1]),
+            ]
+        )
+        allowed = 0.5 * pixel * np.linalg.norm(eye - nearest)
+        if n < SLICE_GRIDS[-1]:
+            checked += 1
+            assert _chord_error(heights, 3.0, terrain, instance, n) <= allowed
+    assert checked > 0  # some cells take a coarser grid than the finest
+
+
+def test_slice_grids_coarsen_with_distance_and_are_one_quad_on_flat_ground():
+    heights = hills(64, seed=5)
+    terrain = Terrain.centred(24, 24, heights=heights, height_scale=3.0)
+    cells = terrain.cells(np.arange(24), np.full(24, 12))  # a row of cells along x
+    pixel = 2.0 * np.tan(np.radians(25.0)) / 270
+    near = slice_grids(cells, np.array([-12.0, 4.0, 0.0]), pixel, terrain.curvature)
+    far = slice_grids(cells, np.array([-200.0, 4.0, 0.0]), pixel, terrain.curvature)
+    assert np.all(far <= near) and far.sum() < near.sum()
+    flat = Terrain.centred(24, 24)
+    assert np.all(
+        slice_grids(
+            flat.cells(np.arange(24), np.zeros(24, int)),
+            np.array([0.0, 1.0, 0.0]),
+            pixel,
+            flat.curvature,
+        )
+        == 1
+    )

@@ -1,6 +1,7 @@
 """The image-based renderer draws a cell on flat ground as one quad and a cell on uneven ground
 as a grid that follows the height map (render/image.py): on flat ground both give the same
-picture, and only the cells whose ground varies are drawn as grids."""
+picture, only the cells whose ground varies are drawn as grids, and a grid is no finer than
+the ground's bends seen from the eye need."""
 
 import dataclasses
 
@@ -13,17 +14,19 @@ SIZE = (240, 160)
 CAMERA = Camera.from_eye_target((0.0, 3.0, 7.0), (0.0, 0.0, 0.0), fov_y=50.0)
 
 
-def test_flat_cells_are_one_quad_and_look_as_the_grid_does(headless):
+def test_flat_cells_are_one_quad_and_look_as_the_grid_does(headless, monkeypatch):
     doc = get_scene("patch-grid").document()
     renderer = headless(doc, mode="image")
     quads, _ = renderer.render(CAMERA, SIZE)
     image = renderer.pipeline.image
     assert image.instance_count > 0
-    assert image.flat.instance_count == image.instance_count  # every cell of the flat grid
-    assert image.uneven.instance_count == 0
-    image.flat_ground = -1.0  # every cell a grid, as before there were two batches
+    assert image.batches[1].instance_count == image.instance_count  # every cell of the flat grid
+    image.flat_ground = -1.0  # every cell a grid of the finest kind
+    monkeypatch.setattr(
+        "render.image.slice_grids", lambda instances, *_: np.full(instances.size, 6, np.int32)
+    )
     grids, _ = renderer.render(CAMERA, SIZE)
-    assert image.uneven.instance_count == image.instance_count
+    assert image.batches[6].instance_count == image.instance_count
     grass = np.abs(grids.astype(int) - quads.astype(int)).max(axis=-1)
     assert (grass > 24).mean() < 0.002  # the same picture but for a few edge pixels
 
@@ -40,6 +43,23 @@ def test_cells_on_a_slope_are_grids(headless):
     renderer = headless(ramp.document(), mode="image")
     renderer.render(CAMERA, SIZE)
     image = renderer.pipeline.image
-    assert image.flat.instance_count > 0
-    assert image.uneven.instance_count > 0
-    assert image.flat.instance_count + image.uneven.instance_count == image.instance_count
+    counts = {n: batch.instance_count for n, batch in image.batches.items()}
+    assert counts[1] > 0
+    assert sum(counts.values()) - counts[1] > 0
+    assert sum(counts.values()) == image.instance_count
+
+
+def test_far_cells_on_the_meadow_take_coarser_grids_and_the_same_picture(headless):
+    doc = get_scene("meadow").document()
+    camera = doc.camera("default")
+    renderer = headless(doc, mode="lod")
+    adaptive, _ = renderer.render(camera, SIZE)
+    grass = renderer.pipeline.grass_types[0]
+    counts = {n: batch.instance_count for n, batch in grass.image.batches.items()}
+    assert sum(c for n, c in counts.items() if n < 6) > counts[6]  # most cells need less
+    object.__setattr__(renderer.pipeline.terrain, "curvature", np.inf)  # every grid the finest
+    finest, _ = renderer.render(camera, SIZE)
+    counts = {n: batch.instance_count for n, batch in grass.image.batches.items()}
+    assert counts[6] == sum(c for n, c in counts.items() if n > 1)
+    moved = np.abs(adaptive.astype(int) - finest.astype(int)).max(axis=-1)
+    assert (moved > 24).mean() < 0.001  # under half a pixel's shift: a few edge pixels
