@@ -22,9 +22,12 @@ either changes."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from core.canopy import Canopy
+from core.light_moments import LightMoments, powers
 
 AZIMUTHS = 32  # table columns: azimuth of e, 0 = +z turning towards +x (as the sun's)
 ELEVATIONS = 8  # table rows: elevation of e, 0 … 90 degrees, texel centres
@@ -46,6 +49,30 @@ def directions(azimuths: int = AZIMUTHS, elevations: int = ELEVATIONS) -> np.nda
     )
 
 
+def _facing_weights(
+    normals: np.ndarray,
+    azimuths: int,
+    elevations: int,
+    seen: tuple[np.ndarray, Canopy] | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The unit normals (k, 3) a table takes (at most SAMPLE), each one's weight from each
+    table direction (k, m): |n · e|, times what reaches it with `seen`; and sign(n · e)."""
+    n = np.asarray(normals, np.float64).reshape(-1, 3)
+    length = np.linalg.norm(n, axis=1)
+    keep = length > 1e-6
+    n = n[keep] / length[keep, None]
+    pick = np.linspace(0, len(n) - 1, min(len(n), SAMPLE)).astype(np.int64)
+    n = n[pick]
+    ne = n @ directions(azimuths, elevations).reshape(-1, 3).T  # (normals, directions)
+    w = np.abs(ne)
+    if seen is not None and len(n):
+        heights, canopy = seen
+        y = np.asarray(heights, np.float64).reshape(-1)[keep][pick]
+        theta = np.arcsin(directions(1, elevations)[:, 0, 1])  # the rows' elevations
+        w = w * np.repeat(canopy.transmittance(y, theta), azimuths, axis=1)
+    return n, w, np.sign(ne)
+
+
 def facing_lambert(
     normals: np.ndarray,
     light_dir: np.ndarray,
@@ -54,30 +81,33 @@ def facing_lambert(
     elevations: int = ELEVATIONS,
     seen: tuple[np.ndarray, Canopy] | None = None,
 ) -> np.ndarray:
-    """(elevations, azimuths) float32: L(e) at each table direction (see the module).
-    `seen`: the vertices' heights and the patch's canopy; each vertex then counts as far as a
-    view from e reaches its height through the blades above it (Canopy.transmittance)."""
-    n = np.asarray(normals, np.float64).reshape(-1, 3)
-    length = np.linalg.norm(n, axis=1)
-    keep = length > 1e-6
-    n = n[keep] / length[keep, None]
+    """(elevations, azimuths) float32: L(e) at each table direction (see the module), summed
+    over the normals for this light. `seen`: the vertices' heights and the patch's canopy; each
+    vertex then counts as far as a view from e reaches its height through the blades above it
+    (Canopy.transmittance)."""
+    n, w, facing = _facing_weights(normals, azimuths, elevations, seen)
     if len(n) == 0:
         return np.zeros((elevations, azimuths), np.float32)
-    pick = np.linspace(0, len(n) - 1, min(len(n), SAMPLE)).astype(np.int64)
-    n = n[pick]
-    e = directions(azimuths, elevations).reshape(-1, 3)
-    ne = n @ e.T  # (normals, directions)
-    nl = n @ np.asarray(light_dir, np.float64)  # (normals,)
-    facing_l = np.sign(ne) * nl[:, None]  # n_f · L
+    facing_l = facing * (n @ np.asarray(light_dir, np.float64))[:, None]  # n_f · L
     lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
-    w = np.abs(ne)
-    if seen is not None:
-        heights, canopy = seen
-        y = np.asarray(heights, np.float64).reshape(-1)[keep][pick]
-        theta = np.arcsin(directions(1, elevations)[:, 0, 1])  # the rows' elevations
-        w = w * np.repeat(canopy.transmittance(y, theta), azimuths, axis=1)
     table = (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
     return table.reshape(elevations, azimuths).astype(np.float32)
+
+
+def facing_moments(
+    normals: np.ndarray,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    seen: tuple[np.ndarray, Canopy] | None = None,
+) -> LightMoments:
+    """facing_lambert's table for any light: LightMoments of shape (elevations, azimuths)
+    (core/light_moments.py), `.lit(light, translucency)` the table."""
+    n, w, facing = _facing_weights(normals, azimuths, elevations, seen)
+    m = LightMoments.of(n, w, facing)
+    shape = (elevations, azimuths)
+    return LightMoments(
+        m.powers.reshape(*shape, -1), m.signed.reshape(*shape, 3), m.total.reshape(shape)
+    )
 
 
 # -- the wind's bend ---------------------------------------------------------------------------
@@ -92,31 +122,50 @@ LEAN_STEP = 0.3  # the shaders keep λ within ±LEAN_STEP per component: interpo
 BEND_SAMPLE = 6000  # the bent tables' normals (nine tables on every patch or light change)
 
 
-def bend_coefficients(
+BENDS = ((0, 0), (1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1))
+
+
+def bend_moments(
     vertices: np.ndarray,
+    canopy: Canopy | None = None,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    step: float = LEAN_STEP,
+) -> LightMoments:
+    """The tables of the patch bent by each of BENDS times `step` for any light: LightMoments
+    of shape (len(BENDS), elevations, azimuths); with `canopy`, each vertex seen through the
+    blades above its bent height (facing_lambert's `seen`)."""
+    from core.wind import bend_vertices
+
+    pick = np.linspace(0, len(vertices) - 1, min(len(vertices), BEND_SAMPLE)).astype(np.int64)
+    v = vertices[pick]
+    tables = []
+    for x, z in BENDS:
+        positions, normals = bend_vertices(v, np.array([x, z]) * step)
+        seen = None if canopy is None else (positions[:, 1], canopy)
+        tables.append(facing_moments(normals, azimuths, elevations, seen))
+    return LightMoments.stack(tables)
+
+
+def bend_coefficients(
+    vertices: np.ndarray | None,
     light_dir: np.ndarray,
     translucency: float,
     canopy: Canopy | None = None,
     azimuths: int = AZIMUTHS,
     elevations: int = ELEVATIONS,
     step: float = LEAN_STEP,
+    moments: LightMoments | None = None,
 ) -> np.ndarray:
     """(elevations, azimuths, 5) float32: G_x, G_z, H_xx, H_xz, H_zz (see above) of the
     patch's vertices (core/patch.py VERTEX_DTYPE); with `canopy`, each vertex seen through the
-    blades above its bent height (facing_lambert's `seen`)."""
-    from core.wind import bend_vertices
-
-    pick = np.linspace(0, len(vertices) - 1, min(len(vertices), BEND_SAMPLE)).astype(np.int64)
-    v = vertices[pick]
-
-    def table(x: float, z: float) -> np.ndarray:
-        positions, normals = bend_vertices(v, np.array([x, z]) * step)
-        seen = None if canopy is None else (positions[:, 1], canopy)
-        return facing_lambert(normals, light_dir, translucency, azimuths, elevations, seen)
-
-    rest = table(0.0, 0.0)
-    xp, xm, zp, zm = table(1, 0), table(-1, 0), table(0, 1), table(0, -1)
-    diagonal = table(1, 1) - table(1, -1) - table(-1, 1) + table(-1, -1)
+    blades above its bent height (facing_lambert's `seen`). `moments`: bend_moments of the
+    same, kept from an earlier light."""
+    if moments is None:
+        assert vertices is not None, "the vertices or their bend_moments"
+        moments = bend_moments(vertices, canopy, azimuths, elevations, step)
+    rest, xp, xm, zp, zm, pp, pm, mp, mm = moments.lit(light_dir, translucency)
+    diagonal = pp - pm - mp + mm
     h2 = step * step
     out = [
         (xp - xm) / (2.0 * step),
@@ -182,28 +231,51 @@ def slope_means(
     sheared: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The blades' diffuse factor seen from directions `to_eye` ((m, 3)) at elevations θ over
-    the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape.
-    Both weigh each vertex by |n · e| and by the share of a view at θ that reaches its height
-    (Canopy.transmittance): the sheared blade (as the slices are) at its own height y, the upright one
-    at y − g · (its offset from the root along the view) − c · (its offset to the viewer's
-    right), g = tan θ − tan e the ground's rise per unit run away from the eye, c its rise to
-    the right (`across`, θ's shape; 0 if not given), and not at all where that is below the
-    ground. With `sheared` False the second array is zeros (not computed)."""
+    the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape
+    (slope_moments under this light)."""
+    upright, sheared_moments = slope_moments(
+        normals, positions, roots, canopy, to_eye, theta, sample, across, sheared
+    )
+    out = upright.lit(light_dir, translucency)
+    if sheared_moments is None:
+        return out, np.zeros(np.shape(theta))
+    return out, sheared_moments.lit(light_dir, translucency)
+
+
+def slope_moments(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    to_eye: np.ndarray,
+    theta: np.ndarray,
+    sample: int = 3000,
+    across: np.ndarray | None = None,
+    sheared: bool = True,
+) -> tuple[LightMoments, LightMoments | None]:
+    """What the blades seen from directions `to_eye` ((m, 3)) at elevations θ over the ground
+    ((..., m), radians, several per direction) show of any light, upright and sheared
+    (LightMoments of θ's shape; the second None unless `sheared`). Both weigh each vertex by
+    |n · e| and by the share of a view at θ that reaches its height (Canopy.transmittance): the
+    sheared blade (as the slices are) at its own height y, the upright one at
+    y − g · (its offset from the root along the view) − c · (its offset to the viewer's right),
+    g = tan θ − tan e the ground's rise per unit run away from the eye, c its rise to the right
+    (`across`, θ's shape; 0 if not given), and not at all where that is below the ground."""
     n = np.asarray(normals, np.float64).reshape(-1, 3)
     length = np.linalg.norm(n, axis=1)
     pick = np.flatnonzero(length > 1e-6)
     pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
     e = np.asarray(to_eye, np.float64).reshape(-1, 3)
     e = e / np.linalg.norm(e, axis=1, keepdims=True)
+    shape = np.shape(theta)
     if len(pick) == 0:
-        return np.zeros(np.shape(theta)), np.zeros(np.shape(theta))
+        nothing = LightMoments(np.zeros((*shape, 1)), np.zeros((*shape, 3)), np.zeros(shape))
+        return nothing, nothing if sheared else None
     n = n[pick] / length[pick, None]
     position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
     y = position[:, 1:2]  # (k, 1)
     offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
     ne = n @ e.T  # (k, m)
-    facing_l = np.sign(ne) * (n @ np.asarray(light_dir, np.float64))[:, None]
-    lit = np.maximum(facing_l, 0.0) + translucency * np.maximum(-facing_l, 0.0)
     away = -e[:, [0, 2]]
     away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
     right = np.stack([-away[:, 1], away[:, 0]], axis=1)  # (x, z) to the viewer's right
@@ -212,11 +284,21 @@ def slope_means(
     # table differs from double precision by under 3e-4
     along = (offset @ away.T).astype(np.float32)  # each vertex's offset from its root …
     sideways = (offset @ right.T).astype(np.float32)  # … along the view and to its right
-    y, ne, lit = y.astype(np.float32), ne.astype(np.float32), lit.astype(np.float32)
+    y, face = y.astype(np.float32), np.abs(ne).astype(np.float32)
+    # the patch's side of the light's sums, once: Σ w n^α and Σ w s n are products of the
+    # weights with these (core/light_moments.py)
+    basis = np.hstack([powers(n), n]).astype(np.float32)  # (k, P + 3)
+    signed_face = np.sign(ne).astype(np.float32) * face
 
-    def mean(w: np.ndarray) -> np.ndarray:
-        w = w * np.abs(ne)
-        return (w * lit).sum(axis=0) / np.maximum(w.sum(axis=0), 1e-12)
+    def moments(w: np.ndarray) -> LightMoments:
+        """The sums of weights w (k, m) times |n · e|."""
+        both = np.concatenate(
+            [(w * face).T @ basis[:, :-3], (w * signed_face).T @ basis[:, -3:]], 1
+        )
+        return LightMoments(
+            both[:, :-3].astype(np.float64), both[:, -3:].astype(np.float64),
+            (w * face).sum(axis=0, dtype=np.float64),
+        )  # fmt: skip
 
     def reach(heights: np.ndarray, t: np.ndarray) -> np.ndarray:
         """Canopy.transmittance of (k, m) heights at the m elevations t: the exponential once per
@@ -226,17 +308,85 @@ def slope_means(
 
     thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
     rises = np.zeros(thetas.shape) if across is None else np.broadcast_to(across, thetas.shape)
-    upright, sheared_mean = np.zeros(thetas.shape), np.zeros(thetas.shape)
+    upright, sheared_parts = [], []
     for index in np.ndindex(thetas.shape[:-1]):  # a θ for each direction per pass
         t = thetas[index]
         g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE).astype(np.float32)
         g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
         c = np.clip(rises[index], -MAX_RISE, MAX_RISE).astype(np.float32)
         upright_y = y - g * along - c * sideways  # (k, m)
-        upright[index] = mean(reach(upright_y, t) * (upright_y >= 0.0))
+        upright.append(moments(reach(upright_y, t) * (upright_y >= 0.0)))
         if sheared:
-            sheared_mean[index] = mean(reach(y, t))
-    return upright, sheared_mean
+            sheared_parts.append(moments(reach(y, t)))
+
+    def shaped(parts: list[LightMoments]) -> LightMoments:
+        m = LightMoments.stack(parts)
+        return LightMoments(
+            m.powers.reshape(*shape, -1), m.signed.reshape(*shape, 3), m.total.reshape(shape)
+        )
+
+    return shaped(upright), shaped(sheared_parts) if sheared else None
+
+
+@dataclass(frozen=True)
+class SlopeMoments:
+    """slope_tables' sums for any light: the upright blades' (blocks, slopes, m) and the
+    sheared ones' (slopes, m), m the table's directions."""
+
+    upright: LightMoments
+    sheared: LightMoments
+    elevations: int
+    azimuths: int
+
+
+def slope_moments_table(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    slopes: int = SLOPES,
+    sample: int = 3000,
+    blocks: int = ACROSS,
+) -> SlopeMoments:
+    """What slope_tables needs of the patch, once for every light (the table's directions,
+    each at the elevations over the ground of slope_offsets, the rises of across_rises)."""
+    e = directions(azimuths, elevations).reshape(-1, 3)
+    theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
+    rises = across_rises(blocks)
+    middle = blocks // 2  # no rise across the view
+    level, sheared = slope_moments(normals, positions, roots, canopy, e, theta, sample)
+    others = [b for b in range(blocks) if b != middle]
+    shape = (len(others), *theta.shape)
+    tilted, _ = slope_moments(
+        normals, positions, roots, canopy, e, np.broadcast_to(theta, shape), sample,
+        across=np.broadcast_to(rises[others][:, None, None], shape), sheared=False,
+    )  # fmt: skip
+    tilted_parts = iter(
+        LightMoments(tilted.powers[i], tilted.signed[i], tilted.total[i])
+        for i in range(len(others))
+    )
+    parts = [level if b == middle else next(tilted_parts) for b in range(blocks)]
+    assert sheared is not None
+    return SlopeMoments(LightMoments.stack(parts), sheared, elevations, azimuths)
+
+
+def slope_ratios(moments: SlopeMoments, light_dir: np.ndarray, translucency: float) -> np.ndarray:
+    """slope_tables of the patch the moments are of, under this light."""
+    upright = moments.upright.lit(light_dir, translucency)  # (blocks, slopes, m)
+    sheared = moments.sheared.lit(light_dir, translucency)  # (slopes, m)
+    blocks, slopes = upright.shape[:2]
+    flat = upright[blocks // 2, slopes // 2]  # elevation over the ground = the direction's
+    out = np.stack(
+        [
+            np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0),
+            np.where(flat > 0.0, upright / np.maximum(flat, 1e-6), 1.0),
+        ],
+        axis=-1,
+    )
+    out = np.clip(out, *RATIO_LIMITS)
+    return out.reshape(blocks, slopes, moments.elevations, moments.azimuths, 2).astype(np.float32)
 
 
 def slope_tables(
@@ -258,28 +408,7 @@ def slope_tables(
     [..., 0] upright blades over sheared ones (the volume's slices, sheared with the ground),
     [..., 1] upright blades on the slope over upright blades on flat ground seen from the same
     direction (the image-based grass, lit by the flat ground's facing table); 1 on flat ground."""
-    e = directions(azimuths, elevations).reshape(-1, 3)
-    theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
-    rises = across_rises(blocks)
-    middle = blocks // 2  # no rise across the view
-    upright = np.zeros((blocks, *theta.shape))
-    upright[middle], sheared = slope_means(
-        normals, positions, roots, canopy, light_dir, translucency, e, theta, sample
+    moments = slope_moments_table(
+        normals, positions, roots, canopy, azimuths, elevations, slopes, sample, blocks
     )
-    others = [b for b in range(blocks) if b != middle]
-    shape = (len(others), *theta.shape)
-    upright[others], _ = slope_means(
-        normals, positions, roots, canopy, light_dir, translucency, e,
-        np.broadcast_to(theta, shape), sample,
-        across=np.broadcast_to(rises[others][:, None, None], shape), sheared=False,
-    )  # fmt: skip
-    flat = upright[middle, slopes // 2]  # elevation over the ground = the direction's, no rise
-    out = np.stack(
-        [
-            np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0),
-            np.where(flat > 0.0, upright / np.maximum(flat, 1e-6), 1.0),
-        ],
-        axis=-1,
-    )
-    out = np.clip(out, *RATIO_LIMITS).reshape(blocks, slopes, elevations, azimuths, 2)
-    return out.astype(np.float32)
+    return slope_ratios(moments, light_dir, translucency)

@@ -19,40 +19,48 @@ from core.facing import (
     AZIMUTHS,
     ELEVATIONS,
     SLOPES,
+    SlopeMoments,
     bend_coefficients,
-    facing_lambert,
-    slope_tables,
+    bend_moments,
+    facing_moments,
+    slope_moments_table,
+    slope_ratios,
 )
+from core.light_moments import LightMoments
 from core.lighting import Lighting
 from core.patch import GrassPatch
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 SLOPE_UNIT = 12  # texture unit of the slope-ratio table
-KEPT_TABLES = 8  # slope-ratio tables kept by what they are of (a build takes about a second)
-_kept: OrderedDict[tuple, np.ndarray] = OrderedDict()
+KEPT_TABLES = 8  # slope-table sums kept by the patch and canopy they are of (a build: a second)
+_kept: OrderedDict[tuple, SlopeMoments] = OrderedDict()
 
 
-def kept_slope_tables(patch: GrassPatch, canopy: Canopy, lighting: Lighting) -> np.ndarray:
-    """core/facing.py slope_tables of this patch, canopy and light, the last KEPT_TABLES kept:
+def kept_slope_moments(patch: GrassPatch, canopy: Canopy) -> SlopeMoments:
+    """core/facing.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
     each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
-    and the full frame's, every test's), and a build takes about a second."""
+    and the full frame's, every test's), a build takes about a second, and every light is a
+    small product of the same sums (core/light_moments.py)."""
     digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
     for sigma, colour in canopy.profiles:
         digest.update(np.ascontiguousarray(sigma).tobytes())
         digest.update(np.ascontiguousarray(colour).tobytes())
-    key = (digest.digest(), canopy.height, *lighting.sun_direction, lighting.translucency)
-    table = _kept.get(key)
-    if table is None:
+    key = (digest.digest(), canopy.height)
+    moments = _kept.get(key)
+    if moments is None:
         v = patch.vertices
-        table = slope_tables(
-            v["normal"], v["position"], v["root"], canopy,
-            lighting.sun_direction, lighting.translucency,
-        )  # fmt: skip
-        _kept[key] = table
+        moments = slope_moments_table(v["normal"], v["position"], v["root"], canopy)
+        _kept[key] = moments
         while len(_kept) > KEPT_TABLES:
             _kept.popitem(last=False)
     _kept.move_to_end(key)
-    return table
+    return moments
+
+
+def kept_slope_tables(patch: GrassPatch, canopy: Canopy, lighting: Lighting) -> np.ndarray:
+    """core/facing.py slope_tables of this patch, canopy and light, from the kept sums."""
+    moments = kept_slope_moments(patch, canopy)
+    return slope_ratios(moments, lighting.sun_direction, lighting.translucency)
 
 
 class FacingTable:
@@ -74,19 +82,37 @@ class FacingTable:
         self.texture.repeat_x = True  # azimuth wraps
         self.texture.repeat_y = False
         self._used: tuple | None = None  # the patch, light, canopy and bend the table is of
+        # the patch's sums for any light (core/light_moments.py): the patch and canopy they are
+        # of, the table at rest, the bent tables (None until the wind asks for them)
+        self._moments: tuple | None = None
 
-    def table(self, lighting: Lighting, bend: bool = True) -> np.ndarray | None:
-        """(2 · ELEVATIONS, AZIMUTHS, 3): the texture's rows; the bend coefficients zero
-        unless `bend`."""
+    def moments(self, bend: bool) -> tuple[LightMoments, LightMoments | None] | None:
+        """The patch's sums (at rest, bent): built when the patch or canopy changes, or when
+        the bent ones are first needed; a light change uses them as they are."""
         patch = self._patch()
         if patch is None:
             return None
         canopy = self._canopy() if self._canopy is not None else None
-        v, light, through = patch.vertices, lighting.sun_direction, lighting.translucency
-        seen = None if canopy is None else (v["position"][:, 1], canopy)
-        rest = facing_lambert(v["normal"], light, through, seen=seen)
-        if bend:
-            coefficients = bend_coefficients(v, light, through, canopy)
+        held = self._moments
+        if held is None or held[0] is not patch or held[1] is not canopy:
+            v = patch.vertices
+            seen = None if canopy is None else (v["position"][:, 1], canopy)
+            held = self._moments = (patch, canopy, facing_moments(v["normal"], seen=seen), None)
+        if bend and held[3] is None:
+            held = self._moments = (*held[:3], bend_moments(patch.vertices, canopy))
+        return held[2], held[3]
+
+    def table(self, lighting: Lighting, bend: bool = True) -> np.ndarray | None:
+        """(2 · ELEVATIONS, AZIMUTHS, 3): the texture's rows; the bend coefficients zero
+        unless `bend`."""
+        sums = self.moments(bend)
+        if sums is None:
+            return None
+        rest_sums, bent_sums = sums
+        light, through = lighting.sun_direction, lighting.translucency
+        rest = rest_sums.lit(light, through).astype(np.float32)
+        if bend and bent_sums is not None:
+            coefficients = bend_coefficients(None, light, through, moments=bent_sums)
         else:
             coefficients = np.zeros((*rest.shape, 5), np.float32)
         return np.concatenate([np.dstack([rest, coefficients[..., :2]]), coefficients[..., 2:]])
