@@ -285,20 +285,17 @@ def slope_moments(
     along = (offset @ away.T).astype(np.float32)  # each vertex's offset from its root …
     sideways = (offset @ right.T).astype(np.float32)  # … along the view and to its right
     y, face = y.astype(np.float32), np.abs(ne).astype(np.float32)
-    # the patch's side of the light's sums, once: Σ w n^α and Σ w s n are products of the
-    # weights with these (core/light_moments.py)
-    basis = np.hstack([powers(n), n]).astype(np.float32)  # (k, P + 3)
-    signed_face = np.sign(ne).astype(np.float32) * face
+    # the patch's side of the light's sums, once (core/light_moments.py): Σ w |n · e| n^α and
+    # Σ w |n · e| are one product of the weights times |n · e| with these; the signed sum
+    # Σ w |n · e| s n = Σ w (n · e) n = (Σ w n nᵀ) e needs no second (k, m) product
+    basis = np.hstack([powers(n), np.ones((len(n), 1))]).astype(np.float32)  # (k, P + 1)
+    outer = (n[:, :, None] * n[:, None, :]).reshape(-1, 9).astype(np.float32)  # (k, 9)
 
     def moments(w: np.ndarray) -> LightMoments:
         """The sums of weights w (k, m) times |n · e|."""
-        both = np.concatenate(
-            [(w * face).T @ basis[:, :-3], (w * signed_face).T @ basis[:, -3:]], 1
-        )
-        return LightMoments(
-            both[:, :-3].astype(np.float64), both[:, -3:].astype(np.float64),
-            (w * face).sum(axis=0, dtype=np.float64),
-        )  # fmt: skip
+        sums = ((w * face).T @ basis).astype(np.float64)
+        second = (w.T @ outer).astype(np.float64).reshape(-1, 3, 3)  # Σ w n nᵀ per direction
+        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, e), sums[:, -1])
 
     def reach(heights: np.ndarray, t: np.ndarray) -> np.ndarray:
         """Canopy.transmittance of (k, m) heights at the m elevations t: the exponential once per
