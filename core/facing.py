@@ -103,11 +103,7 @@ def facing_moments(
     """facing_lambert's table for any light: LightMoments of shape (elevations, azimuths)
     (core/light_moments.py), `.lit(light, translucency)` the table."""
     n, w, facing = _facing_weights(normals, azimuths, elevations, seen)
-    m = LightMoments.of(n, w, facing)
-    shape = (elevations, azimuths)
-    return LightMoments(
-        m.powers.reshape(*shape, -1), m.signed.reshape(*shape, 3), m.total.reshape(shape)
-    )
+    return LightMoments.of(n, w, facing).reshaped((elevations, azimuths))
 
 
 # -- the wind's bend ---------------------------------------------------------------------------
@@ -269,7 +265,8 @@ def slope_moments(
     e = e / np.linalg.norm(e, axis=1, keepdims=True)
     shape = np.shape(theta)
     if len(pick) == 0:
-        nothing = LightMoments(np.zeros((*shape, 1)), np.zeros((*shape, 3)), np.zeros(shape))
+        none = np.zeros((0, int(np.prod(shape))))
+        nothing = LightMoments.of(np.zeros((0, 3)), none, none).reshaped(shape)
         return nothing, nothing if sheared else None
     n = n[pick] / length[pick, None]
     position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
@@ -316,13 +313,10 @@ def slope_moments(
         if sheared:
             sheared_parts.append(moments(reach(y, t)))
 
-    def shaped(parts: list[LightMoments]) -> LightMoments:
-        m = LightMoments.stack(parts)
-        return LightMoments(
-            m.powers.reshape(*shape, -1), m.signed.reshape(*shape, 3), m.total.reshape(shape)
-        )
-
-    return shaped(upright), shaped(sheared_parts) if sheared else None
+    return (
+        LightMoments.stack(upright).reshaped(shape),
+        LightMoments.stack(sheared_parts).reshaped(shape) if sheared else None,
+    )
 
 
 @dataclass(frozen=True)

@@ -93,6 +93,14 @@ class LightMoments:
             np.stack([p.total for p in parts]),
         )
 
+    def reshaped(self, shape: tuple[int, ...]) -> LightMoments:
+        """The same sums with their entries laid out in `shape`."""
+        return LightMoments(
+            self.powers.reshape(*shape, -1),
+            self.signed.reshape(*shape, 3),
+            self.total.reshape(shape),
+        )
+
     def lit(self, light_dir: np.ndarray, translucency: float) -> np.ndarray:
         """The mean diffuse factor of each entry under this light (float64, its shape)."""
         light = np.asarray(light_dir, np.float64)
