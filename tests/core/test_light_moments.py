@@ -54,3 +54,17 @@ def test_the_linear_part_is_exact_and_both_faces_of_a_normal_share_the_sums():
     # with translucency 1 the factor is |n · L| alone; with 0 a face lit from behind is dark
     lit_both = (w * np.abs(n @ light)[:, None]).sum(0) / w.sum(0)
     assert np.abs(sums.lit(light, 1.0) - lit_both).max() < 2e-3
+
+
+def test_no_normals_light_nothing_and_change_no_slope():
+    from core.canopy import Canopy
+    from core.facing import slope_tables
+
+    sun = Lighting().sun_direction
+    assert not facing_moments(np.zeros((4, 3))).lit(sun, 0.3).any()
+    stack = np.zeros((2, 8, 4, 4), np.float32)
+    stack[..., 3] = 0.3
+    table = slope_tables(
+        np.zeros((5, 3)), np.zeros((5, 3)), np.zeros((5, 2)), Canopy.of([stack], 1.0), sun, 0.3
+    )
+    np.testing.assert_array_equal(table, 1.0)
