@@ -181,7 +181,7 @@ def bend_coefficients(
 # the ground below it, as if the blades lay on the slope. Seen along a slope that rises away
 # from the eye, the upright blades show their downhill parts, whose eye-facing sides turn down
 # and away from the light: on a 14° ramp seen at 5° the blades' diffuse factor is 0.39, the
-# sheared slices' 0.44; slope_means' model of each gives 0.395 and 0.450 (scripts/
+# sheared slices' 0.44; slope_moments' model of each gives 0.395 and 0.450 (scripts/
 # facing_check.py --height-scale 8 --elevations 5 --azimuths 0 --predict; flat ground 0.44).
 SLOPES = 9  # ratio-table layers: the view's elevation over the ground minus over the horizon
 SLOPE_SPAN = np.radians(30.0)  # the outer layers' difference; layer t in -1 … 1 is SPAN · t|t|
@@ -211,31 +211,6 @@ def across_rises(count: int = ACROSS) -> np.ndarray:
     this)."""
     t = np.linspace(-1.0, 1.0, count)
     return ACROSS_SPAN * t * np.abs(t)
-
-
-def slope_means(
-    normals: np.ndarray,
-    positions: np.ndarray,
-    roots: np.ndarray,
-    canopy: Canopy,
-    light_dir: np.ndarray,
-    translucency: float,
-    to_eye: np.ndarray,
-    theta: np.ndarray,
-    sample: int = 3000,
-    across: np.ndarray | None = None,
-    sheared: bool = True,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The blades' diffuse factor seen from directions `to_eye` ((m, 3)) at elevations θ over
-    the ground ((..., m), radians, several per direction): (upright, sheared), each θ's shape
-    (slope_moments under this light)."""
-    upright, sheared_moments = slope_moments(
-        normals, positions, roots, canopy, to_eye, theta, sample, across, sheared
-    )
-    out = upright.lit(light_dir, translucency)
-    if sheared_moments is None:
-        return out, np.zeros(np.shape(theta))
-    return out, sheared_moments.lit(light_dir, translucency)
 
 
 def slope_moments(

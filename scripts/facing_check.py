@@ -35,7 +35,7 @@ CENTRE = 0.0  # the centre of the bench's 32 × 32 cells (its origin is at -16, 
 
 def main() -> None:
     from app.scenes import CameraSpec, get_scene
-    from core.facing import slope_means
+    from core.facing import slope_moments
     from core.project_file import load_project
     from core.wind import Wind, lean
     from render.context import standalone
@@ -51,7 +51,7 @@ def main() -> None:
     ap.add_argument("--modes", default="geometry,image")
     ap.add_argument(
         "--predict", action="store_true",
-        help="also core/facing.py slope_means' upright and sheared diffuse factor at each view",
+        help="also core/facing.py slope_moments' upright and sheared diffuse factor at each view",
     )  # fmt: skip
     ap.add_argument(
         "--wind", default=None,
@@ -139,11 +139,12 @@ def main() -> None:
                 across = away[0] * hs / 32.0  # and to the right of the view ((-away z, away x))
                 theta = math.atan(math.tan(el) + rise)
                 vertices, canopy = model
-                upright, sheared = slope_means(
+                sums = slope_moments(
                     vertices["normal"], vertices["position"], vertices["root"], canopy,
-                    project.light.sun_direction, project.light.translucency,
                     to_eye[None, :], np.array([theta]), across=np.array([across]),
                 )  # fmt: skip
+                light = (project.light.sun_direction, project.light.translucency)
+                upright, sheared = (part.lit(*light) for part in sums)
                 row["model"] = {"upright": round(float(upright[0]), 3),
                                 "sheared": round(float(sheared[0]), 3)}  # fmt: skip
                 if wind.enabled:
@@ -158,14 +159,14 @@ def main() -> None:
 
 def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans):
     """The blades' mean diffuse factor seen from `to_eye` ((m, 3)) with every blade bent by
-    each tip displacement of `leans` ((j, 2)): (j, m). core/facing.py's slope_means weighs the
+    each tip displacement of `leans` ((j, 2)): (j, m). core/facing.py's slope_moments weigh the
     bent normals (on flat ground its sheared mean: |n · e| times the share of a view from e's
     elevation that reaches the vertex), at the vertices' bent heights, the bent canopy stretched
     back to its height at rest (weighing them at their heights at rest, the model predicted
     brighter blades where they measure darker). The model of a table for the far
     representations under the wind: it holds looking down, not at grazing views (README,
     wind)."""
-    from core.facing import slope_means
+    from core.facing import slope_moments
     from core.wind import bend_vertices
 
     e = np.asarray(to_eye, np.float64).reshape(-1, 3)
@@ -175,9 +176,8 @@ def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans):
     for j, lean_xz in enumerate(np.asarray(leans, np.float64).reshape(-1, 2)):
         bent, normals = bend_vertices(vertices, lean_xz)
         bent[:, 1] *= rest_top / max(np.percentile(bent[:, 1], 99), 1e-9)
-        out[j] = slope_means(
-            normals, bent, vertices["root"], canopy, light_dir, translucency, e, theta
-        )[1][0]
+        sheared = slope_moments(normals, bent, vertices["root"], canopy, e, theta)[1]
+        out[j] = sheared.lit(light_dir, translucency)[0]
     return out
 
 
