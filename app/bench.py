@@ -17,6 +17,7 @@ SUITES = (
     "lod_speedup",
     "brush",
     "preview",
+    "edits",
     "latency",
     "files",
     "large_terrain",
