@@ -26,7 +26,6 @@ from core.facing import (
     slope_moments_table,
     slope_ratios,
 )
-from core.light_moments import LightMoments
 from core.lighting import Lighting
 from core.patch import GrassPatch
 
@@ -36,17 +35,22 @@ KEPT_TABLES = 8  # slope-table sums kept by the patch and canopy they are of (a 
 _kept: OrderedDict[tuple, SlopeMoments] = OrderedDict()
 
 
-def kept_slope_moments(patch: GrassPatch, canopy: Canopy) -> SlopeMoments:
+def kept_slope_moments(
+    patch: GrassPatch, canopy: Canopy, build: bool = True
+) -> SlopeMoments | None:
     """core/facing.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
     each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
     and the full frame's, every test's), a build takes about a second, and every light is a
-    small product of the same sums (core/light_moments.py)."""
+    small product of the same sums (core/light_moments.py). None if they are not kept and not
+    `build`."""
     digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
     for sigma, colour in canopy.profiles:
         digest.update(np.ascontiguousarray(sigma).tobytes())
         digest.update(np.ascontiguousarray(colour).tobytes())
     key = (digest.digest(), canopy.height)
     moments = _kept.get(key)
+    if moments is None and not build:
+        return None
     if moments is None:
         v = patch.vertices
         moments = slope_moments_table(v["normal"], v["position"], v["root"], canopy)
@@ -60,6 +64,7 @@ def kept_slope_moments(patch: GrassPatch, canopy: Canopy) -> SlopeMoments:
 def kept_slope_tables(patch: GrassPatch, canopy: Canopy, lighting: Lighting) -> np.ndarray:
     """core/facing.py slope_tables of this patch, canopy and light, from the kept sums."""
     moments = kept_slope_moments(patch, canopy)
+    assert moments is not None
     return slope_ratios(moments, lighting.sun_direction, lighting.translucency)
 
 
@@ -86,29 +91,28 @@ class FacingTable:
         # of, the table at rest, the bent tables (None until the wind asks for them)
         self._moments: tuple | None = None
 
-    def moments(self, bend: bool) -> tuple[LightMoments, LightMoments | None] | None:
-        """The patch's sums (at rest, bent): built when the patch or canopy changes, or when
-        the bent ones are first needed; a light change uses them as they are."""
+    def moments(self, bend: bool, draft: bool = False) -> tuple | None:
+        """(patch, canopy, the sums at rest, the bent sums or None): the sums of the patch and
+        canopy they name, built when those change, or the bent ones when first needed; a light
+        change uses them as they are. In a draft the sums held stand in for a new patch's until
+        the full frame (a blade edit's draft does not wait for them)."""
         patch = self._patch()
         if patch is None:
             return None
         canopy = self._canopy() if self._canopy is not None else None
         held = self._moments
-        if held is None or held[0] is not patch or held[1] is not canopy:
+        stale = held is None or held[0] is not patch or held[1] is not canopy
+        if held is None or (stale and not draft):
             v = patch.vertices
             seen = None if canopy is None else (v["position"][:, 1], canopy)
             held = self._moments = (patch, canopy, facing_moments(v["normal"], seen=seen), None)
-        if bend and held[3] is None:
-            held = self._moments = (*held[:3], bend_moments(patch.vertices, canopy))
-        return held[2], held[3]
+        if bend and held[3] is None and (held[0] is patch or not draft):
+            held = self._moments = (*held[:3], bend_moments(held[0].vertices, held[1]))
+        return held
 
-    def table(self, lighting: Lighting, bend: bool = True) -> np.ndarray | None:
-        """(2 · ELEVATIONS, AZIMUTHS, 3): the texture's rows; the bend coefficients zero
-        unless `bend`."""
-        sums = self.moments(bend)
-        if sums is None:
-            return None
-        rest_sums, bent_sums = sums
+    @staticmethod
+    def _rows(held: tuple, lighting: Lighting, bend: bool) -> np.ndarray:
+        _patch, _canopy, rest_sums, bent_sums = held
         light, through = lighting.sun_direction, lighting.translucency
         rest = rest_sums.lit(light, through).astype(np.float32)
         if bend and bent_sums is not None:
@@ -117,18 +121,30 @@ class FacingTable:
             coefficients = np.zeros((*rest.shape, 5), np.float32)
         return np.concatenate([np.dstack([rest, coefficients[..., :2]]), coefficients[..., 2:]])
 
-    def use(self, lighting: Lighting, wind: bool = False, unit: int = FACING_UNIT) -> None:
+    def table(self, lighting: Lighting, bend: bool = True) -> np.ndarray | None:
+        """(2 · ELEVATIONS, AZIMUTHS, 3): the texture's rows; the bend coefficients zero
+        unless `bend`."""
+        held = self.moments(bend)
+        return None if held is None else self._rows(held, lighting, bend)
+
+    def use(
+        self, lighting: Lighting, wind: bool = False, unit: int = FACING_UNIT, draft: bool = False
+    ) -> None:
         """Bind the table of the grass type's patch and this light; `wind`: with the bend
-        coefficients, which still air does not read (they cost twice the rest)."""
-        patch = self._patch()
-        canopy = self._canopy() if self._canopy is not None else None
-        light = (*lighting.sun_direction, lighting.translucency)
-        if patch is not None:
+        coefficients, which still air does not read (they cost twice the rest); `draft`: the
+        sums held may stand in for a new patch's (moments)."""
+        held = self.moments(wind, draft)
+        if held is not None:
+            light = (*lighting.sun_direction, lighting.translucency)
+            key = (held[0], held[1], light, wind and held[3] is not None)
             used = self._used
-            same = used is not None and used[0] is patch and used[1] == light and used[2] is canopy
-            if not same or (wind and not used[3]):
-                self.texture.write(np.ascontiguousarray(self.table(lighting, wind)).tobytes())
-                self._used = (patch, light, canopy, wind)
+            if (
+                used is None
+                or any(a is not b for a, b in zip(used[:2], key[:2], strict=True))
+                or used[2:] != key[2:]
+            ):
+                self.texture.write(np.ascontiguousarray(self._rows(held, lighting, wind)).tobytes())
+                self._used = key
         self.texture.use(unit)
 
     def release(self) -> None:
@@ -159,28 +175,39 @@ class SlopeTable:
         self.texture.repeat_y = False  # z repeats: a block is read between its end texels' centres
         ones = np.ones((ACROSS, SLOPES, ELEVATIONS, AZIMUTHS, 2), np.float32)
         self.texture.write(ones.tobytes())
-        self._used: tuple | None = None  # the patch, canopy and light the table is of
+        self._used: tuple | None = None  # the sums and light the texture is of
+        self._sums: tuple | None = None  # (patch, canopy, their kept sums)
 
-    def use(self, lighting: Lighting, unit: int = SLOPE_UNIT) -> None:
+    def use(self, lighting: Lighting, unit: int = SLOPE_UNIT, draft: bool = False) -> None:
+        """Bind the tables of the grass type's patch, canopy and this light; `draft`: the sums
+        held may stand in for a new patch's that are not built yet (as FacingTable.moments)."""
         patch, canopy = self._patch(), self._canopy()
-        light = (*lighting.sun_direction, lighting.translucency)
         if patch is not None and canopy is not None:
+            held = self._sums
+            if held is None or held[0] is not patch or held[1] is not canopy:
+                sums = kept_slope_moments(patch, canopy, build=not draft or held is None)
+                if sums is not None:
+                    held = self._sums = (patch, canopy, sums)
+            assert held is not None
+            light = (*lighting.sun_direction, lighting.translucency)
             old = self._used
-            if old is None or old[0] is not patch or old[1] is not canopy or old[2] != light:
-                table = kept_slope_tables(patch, canopy, lighting)
+            if old is None or old[0] is not held[2] or old[1] != light:
+                table = slope_ratios(held[2], lighting.sun_direction, lighting.translucency)
                 self.texture.write(np.ascontiguousarray(table).tobytes())
-                self._used = (patch, canopy, light)
+                self._used = (held[2], light)
         self.texture.use(unit)
 
     def release(self) -> None:
         self.texture.release()
 
 
-def bind_slopes(program: moderngl.Program, table: SlopeTable | None, lighting: Lighting) -> None:
+def bind_slopes(
+    program: moderngl.Program, table: SlopeTable | None, lighting: Lighting, draft: bool = False
+) -> None:
     """Point a far representation's program at its grass type's slope tables (or tell it there
     are none). The sampler keeps its own unit even without a table: two sampler types on one
     unit are an invalid operation."""
     program["u_slope_ratio"].value = SLOPE_UNIT
     program["u_slopes"].value = table is not None
     if table is not None:
-        table.use(lighting)
+        table.use(lighting, draft=draft)

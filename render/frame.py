@@ -291,7 +291,7 @@ class FramePipeline:
             views = [((0, 0, dw, dh), self.mode)]
         # The query first (thesis ch. 6, then ch. 5): what every view draws is selected before
         # this frame's GPU work, so the CPU's part does not wait behind it.
-        queries = [self._query(camera, region, mode, stats) for region, mode in views]
+        queries = [self._query(camera, region, mode, stats, preview) for region, mode in views]
         t_clear = time.perf_counter()
         fbo = self.present.target((dw, dh)) if preview else self._target(size, self.samples)
         fbo.use()
@@ -328,7 +328,12 @@ class FramePipeline:
         return total
 
     def _query(
-        self, camera: Camera, region: tuple[int, int, int, int], mode: str, stats: FrameStats
+        self,
+        camera: Camera,
+        region: tuple[int, int, int, int],
+        mode: str,
+        stats: FrameStats,
+        draft: bool = False,
     ) -> tuple[FrameUniforms, list]:
         """One view's frame uniforms and, per grass type, the cells it draws (t_q)."""
         _, _, w, h = region
@@ -345,6 +350,7 @@ class FramePipeline:
             tiling=self.tiling.seed is not None,
             wind=self.wind,
             time=self.time,
+            draft=draft,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None

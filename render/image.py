@@ -147,9 +147,9 @@ class ImageRenderer:
         p = self.program
         frame.apply(p, self.technique_color)
         if self.facing is not None:
-            self.facing.use(frame.lighting, frame.wind.enabled)
+            self.facing.use(frame.lighting, frame.wind.enabled, draft=frame.draft)
             p["u_facing"].value = FACING_UNIT
-        bind_slopes(p, self.slope, frame.lighting)
+        bind_slopes(p, self.slope, frame.lighting, draft=frame.draft)
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()

@@ -35,6 +35,9 @@ class FrameUniforms:
     wind: Wind = field(default_factory=Wind)  # the wind over the terrain (core/wind.py)
     time: float = 0.0  # seconds: the moment of the wind drawn
     wind_view: bool = False  # the grass coloured by its lean (--view wind)
+    # a draft (render/frame.py preview): the light tables may still be of the patch before an
+    # edit, rebuilt for the full frame that follows (render/facing.py)
+    draft: bool = False
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""

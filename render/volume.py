@@ -115,9 +115,9 @@ class VolumeRenderer(InstancedRenderer):
         # how short averaging makes a normal at most (shaders/volume.glsl blends by it)
         p["u_side_mean_length"].value = min(float(np.linalg.norm(t.sides.mean_normal)), 0.99)
         if self.facing is not None:
-            self.facing.use(frame.lighting, frame.wind.enabled)
+            self.facing.use(frame.lighting, frame.wind.enabled, draft=frame.draft)
             p["u_facing"].value = FACING_UNIT
-        bind_slopes(p, self.slope, frame.lighting)
+        bind_slopes(p, self.slope, frame.lighting, draft=frame.draft)
         if t.sides.depths is None:
             raise ValueError("vertical slices uploaded without their rows' depths")
         for unit, (name, tex) in enumerate(

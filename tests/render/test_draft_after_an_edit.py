@@ -1,0 +1,34 @@
+"""A draft after a blade edit does not wait for the new patch's light sums (render/facing.py):
+the sums held stand in until the full frame, which builds them and draws what a renderer that
+never saw the old patch draws."""
+
+import numpy as np
+
+from app.scenes import get_scene
+
+SIZE = (240, 160)
+
+
+def test_a_blade_edits_draft_keeps_the_sums_and_its_full_frame_builds_them(headless, monkeypatch):
+    import render.facing as facing
+
+    doc = get_scene("meadow").document()
+    camera = doc.camera()
+    renderer = headless(doc)
+    renderer.render(camera, SIZE)  # the sums of the patch as it is
+    built = []
+    for name in ("facing_moments", "slope_moments_table"):
+        real = getattr(facing, name)
+        monkeypatch.setattr(
+            facing,
+            name,
+            lambda *a, _real=real, _name=name, **k: built.append(_name) or _real(*a, **k),
+        )
+    params = doc.grass_types[0].params
+    doc.set_params(0, params.replace(length_min=params.length_min * 1.1))
+    renderer.render(camera, SIZE, preview=True)
+    assert built == []  # the draft drew with the sums it held
+    full, _ = renderer.render(camera, SIZE)
+    assert "facing_moments" in built and "slope_moments_table" in built
+    fresh, _ = headless(doc).render(camera, SIZE)
+    assert np.abs(full.astype(int) - fresh.astype(int)).max() <= 2  # no sums of the old patch
