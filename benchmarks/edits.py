@@ -4,6 +4,9 @@ again, several times per kind of edit, against the frame that follows no edit. A
 should cost no more than a steady frame: the far representations' tables keep the light apart
 from the blades (core/light_moments.py). A blade edit regenerates and converts the patch.
 
+The designer answers an edit with a draft (half resolution) and then the full frame: the suite
+also times a blade edit's draft against a steady draft, and the full frame after it.
+
 Run: `sward bench --suite edits --out results.json` (medians and maxima, ms; compare the ratio
 to the steady frame, not the times).
 """
@@ -26,9 +29,9 @@ def run() -> list[dict]:
     camera = doc.camera()
     renderer = HeadlessRenderer(doc)
 
-    def frame() -> float:
+    def frame(draft: bool = False) -> float:
         start = time.perf_counter()
-        renderer.render(camera, SIZE, measure=False)
+        renderer.render(camera, SIZE, measure=False, preview=draft)
         return (time.perf_counter() - start) * 1000.0
 
     def sun(k: int) -> None:
@@ -63,6 +66,30 @@ def run() -> list[dict]:
                 "median_ms": median,
                 "max_ms": max(times),
                 "over_steady": median / steady if steady else 1.0,
+            }
+        )
+    # the designer answers an edit with a draft first (half resolution), then the full frame
+    drafts, steady_drafts, fulls = [], [], []
+    doc.wind = doc.wind.replace(enabled=False)
+    frame(draft=True)
+    for k in range(RUNS):
+        steady_drafts.append(frame(draft=True))
+        blades(k)
+        drafts.append(frame(draft=True))
+        fulls.append(frame())
+    steady_draft = statistics.median(steady_drafts)
+    for name, times, against in (
+        ("meadow_none_draft", steady_drafts, steady_draft),
+        ("meadow_blade_length_draft", drafts, steady_draft),
+        ("meadow_blade_length_full_after_draft", fulls, steady),
+    ):
+        median = statistics.median(times)
+        rows.append(
+            {
+                "name": name,
+                "median_ms": median,
+                "max_ms": max(times),
+                "over_steady": median / against,
             }
         )
     renderer.release()
