@@ -110,6 +110,17 @@ class FacingTable:
             held = self._moments = (*held[:3], bend_moments(held[0].vertices, held[1]))
         return held
 
+    def stale(self) -> bool:
+        """Whether the sums held are of another patch or canopy than the grass type's now (a
+        draft drew with them: refresh before the frames that follow)."""
+        held = self._moments
+        canopy = self._canopy() if self._canopy is not None else None
+        return held is not None and (held[0] is not self._patch() or held[1] is not canopy)
+
+    def refresh(self) -> None:
+        """Build the sums of the patch and canopy as they are now (the bent ones if held)."""
+        self.moments(self._moments is not None and self._moments[3] is not None)
+
     @staticmethod
     def _rows(held: tuple, lighting: Lighting, bend: bool) -> np.ndarray:
         _patch, _canopy, rest_sums, bent_sums = held
@@ -177,6 +188,21 @@ class SlopeTable:
         self.texture.write(ones.tobytes())
         self._used: tuple | None = None  # the sums and light the texture is of
         self._sums: tuple | None = None  # (patch, canopy, their kept sums)
+
+    def stale(self) -> bool:
+        """Whether a draft left sums of another patch or canopy held (FacingTable.stale)."""
+        held, patch, canopy = self._sums, self._patch(), self._canopy()
+        if held is None or patch is None or canopy is None:
+            return False
+        return held[0] is not patch or held[1] is not canopy
+
+    def refresh(self) -> None:
+        """Build or find the sums of the patch and canopy as they are now."""
+        patch, canopy = self._patch(), self._canopy()
+        if patch is not None and canopy is not None:
+            sums = kept_slope_moments(patch, canopy)
+            assert sums is not None
+            self._sums = (patch, canopy, sums)
 
     def use(self, lighting: Lighting, unit: int = SLOPE_UNIT, draft: bool = False) -> None:
         """Bind the tables of the grass type's patch, canopy and this light; `draft`: the sums

@@ -142,6 +142,14 @@ class FramePipeline:
         self.slice_params = params
         self._convert()
 
+    def stale_light_sums(self) -> bool:
+        """Whether a draft drew a grass type with the light sums of its patch before an edit."""
+        return any(grass.stale_light_sums() for grass in self.grass_types)
+
+    def refresh_light_sums(self) -> None:
+        for grass in self.grass_types:
+            grass.refresh_light_sums()
+
     def missing(self) -> list[tuple[int, int]]:
         """(grass type, slice count) pairs the current mode needs and nobody converted yet."""
         return [
@@ -264,13 +272,16 @@ class FramePipeline:
         measure: bool = False,
         preview: bool = False,
         abort: Callable[[], bool] | None = None,
+        draft: bool | None = None,
     ) -> FrameStats:
         """Draw one frame into `out` (size w × h) and return its statistics.
 
         `preview` draws at half the resolution without multisampling (no alpha-to-coverage,
         harder blade edges) and scales the frame up: several times faster on llvmpipe.
         `abort` is asked before each pass; when it says yes the frame is dropped (FrameAborted):
-        the render process stops a frame that newer input has made stale.
+        the render process stops a frame that newer input has made stale. `draft` (by default
+        as `preview`): the far representations may light a new patch with the light sums of the
+        one before an edit (render/facing.py; stale_light_sums says so).
         """
         self._abort = abort
         ctx = self.ctx
@@ -291,7 +302,8 @@ class FramePipeline:
             views = [((0, 0, dw, dh), self.mode)]
         # The query first (thesis ch. 6, then ch. 5): what every view draws is selected before
         # this frame's GPU work, so the CPU's part does not wait behind it.
-        queries = [self._query(camera, region, mode, stats, preview) for region, mode in views]
+        draft = preview if draft is None else draft
+        queries = [self._query(camera, region, mode, stats, draft) for region, mode in views]
         t_clear = time.perf_counter()
         fbo = self.present.target((dw, dh)) if preview else self._target(size, self.samples)
         fbo.use()

@@ -63,6 +63,15 @@ class GrassTypeRenderer:
         self._set_channel(self.geometry)
         self._set_channel(self.image)
 
+    def stale_light_sums(self) -> bool:
+        """Whether a draft drew with the light sums of the patch before an edit."""
+        return any(t.stale() for t in (self.facing, self.image.facing, self.slope) if t)
+
+    def refresh_light_sums(self) -> None:
+        for table in (self.facing, self.image.facing, self.slope):
+            if table is not None:
+                table.refresh()
+
     def _set_channel(self, renderer) -> None:
         renderer.density_channel = self.density_channel
 

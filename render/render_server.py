@@ -212,13 +212,15 @@ class RenderServer:
         fbo = self._target((w, h))
         try:
             # a draft is timed only as a whole: no ctx.finish() bubbles between its passes
-            stats = self.pipeline.render(request["camera"], fbo, (w, h), not draft, False, abort)
+            stats = self.pipeline.render(
+                request["camera"], fbo, (w, h), not draft, False, abort, draft=draft
+            )
         except FrameAborted:
             return
         stats.preview = draft
         stats.state_time = request["state_time"]
         self._send_frame(request, context.read_rgb(fbo, (w, h), 4), stats)
-        if draft and self.pipeline.missing():
+        if draft and (self.pipeline.missing() or self.pipeline.stale_light_sums()):
             self.refine = True
 
     def _draw_quality(self, request: dict) -> None:
@@ -246,9 +248,14 @@ class RenderServer:
         self.waiting_ack = True
         self.conn.send(("frame", request["version"], request["kind"], (w, h), stats, extra))
 
-    def convert_one(self) -> None:
-        """The draft process makes the slices a draft lacked one set at a time."""
+    def refine_one(self) -> None:
+        """The draft process makes what a draft lacked one piece at a time: the slices, then
+        the light sums of a patch it drew with those of the patch before an edit."""
         p = self.pipeline
+        if not p.missing():
+            p.refresh_light_sums()
+            self.refine = False
+            return
         grass_type, n = p.missing()[0]
         patch = p.grass_types[grass_type].patch
         sp = p.slice_params
@@ -257,7 +264,7 @@ class RenderServer:
         p.set_slice_textures(
             SliceTextures.upload(self.ctx, sliced), patch, sp.replace(slices=n), grass_type
         )
-        if not p.missing():
+        if not p.missing() and not p.stale_light_sums():
             self.refine = False
             self.conn.send(("status", ""))
 
@@ -281,7 +288,7 @@ class RenderServer:
                 if self.continuous and request["kind"] == "view":
                     self.request = request  # frame after frame, the same state
             elif self.refine:
-                self.convert_one()
+                self.refine_one()
                 if self.last is not None and self.request is None:
                     self.request = self.last
 

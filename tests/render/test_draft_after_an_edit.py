@@ -28,7 +28,25 @@ def test_a_blade_edits_draft_keeps_the_sums_and_its_full_frame_builds_them(headl
     doc.set_params(0, params.replace(length_min=params.length_min * 1.1))
     renderer.render(camera, SIZE, preview=True)
     assert built == []  # the draft drew with the sums it held
+    assert renderer.pipeline.stale_light_sums()  # and says so: the draft process refines
     full, _ = renderer.render(camera, SIZE)
+    assert not renderer.pipeline.stale_light_sums()
     assert "facing_moments" in built and "slope_moments_table" in built
     fresh, _ = headless(doc).render(camera, SIZE)
     assert np.abs(full.astype(int) - fresh.astype(int)).max() <= 2  # no sums of the old patch
+
+
+def test_the_draft_process_refreshes_the_sums_a_draft_lacked(headless):
+    doc = get_scene("meadow").document()
+    camera = doc.camera()
+    renderer = headless(doc)
+    renderer.render(camera, SIZE, preview=True)
+    params = doc.grass_types[0].params
+    doc.set_params(0, params.replace(length_min=params.length_min * 1.1))
+    renderer.render(camera, SIZE, preview=True)
+    assert renderer.pipeline.stale_light_sums()
+    renderer.pipeline.refresh_light_sums()  # render/render_server.py refine_one
+    assert not renderer.pipeline.stale_light_sums()
+    refined, _ = renderer.render(camera, SIZE, preview=True)
+    fresh, _ = headless(doc).render(camera, SIZE, preview=True)
+    assert np.abs(refined.astype(int) - fresh.astype(int)).max() <= 2
