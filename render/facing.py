@@ -61,13 +61,6 @@ def kept_slope_moments(
     return moments
 
 
-def kept_slope_tables(patch: GrassPatch, canopy: Canopy, lighting: Lighting) -> np.ndarray:
-    """core/facing.py slope_tables of this patch, canopy and light, from the kept sums."""
-    moments = kept_slope_moments(patch, canopy)
-    assert moments is not None
-    return slope_ratios(moments, lighting.sun_direction, lighting.translucency)
-
-
 class FacingTable:
     """`canopy`: where given, each blade vertex counts as far as a view reaches it through the
     blades above (core/facing.py `seen`): what the image-based grass, one slice for the whole
@@ -168,9 +161,9 @@ class SlopeTable:
     ground against the sheared slices (red: the volume multiplies its diffuse factor by it) and
     against upright blades on flat ground (green: the image-based grass, lit by the flat
     ground's facing table); one 3D float texture (shaders/_lighting.glsl slope_ratios), ones
-    until the grass type has slices (its canopy), rebuilt when the patch, the canopy or the
-    light changes (kept_slope_tables). (The volume's ratio on
-    the image-based grass made the meadow's far field worse: README.)"""
+    until the grass type has slices (its canopy), rewritten when the patch, the canopy or the
+    light changes, from the sums kept_slope_moments keeps. (The volume's ratio on the
+    image-based grass made the meadow's far field worse: README.)"""
 
     def __init__(
         self,

@@ -11,10 +11,18 @@ import dataclasses
 import numpy as np
 
 from core.canopy import Canopy
+from core.facing import slope_ratios
 from core.lighting import Lighting
 from core.params import PatchParams
 from core.patch import generate_patch
-from render.facing import kept_slope_moments, kept_slope_tables
+from render.facing import kept_slope_moments
+
+
+def kept_slope_tables(patch, canopy: Canopy, light: Lighting) -> np.ndarray:
+    """The tables a SlopeTable writes for this patch, canopy and light."""
+    sums = kept_slope_moments(patch, canopy)
+    assert sums is not None
+    return slope_ratios(sums, light.sun_direction, light.translucency)
 
 
 def _canopy(alpha: float) -> Canopy:
