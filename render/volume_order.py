@@ -11,9 +11,14 @@ part of a band in turn. A ray into the grass meets the upper blades of both type
 their lower parts behind them; a type drawn whole over the other showed its own lower, darker
 parts where the other's blades hide them, and the pair went dark. Which type goes first
 alternates from band to band, the taller type's last, so that its part above the other lies on
-top. Two bands keep a pair of types at four passes; each band more costs two."""
+top. A type's parts that come one right after the other in that order are drawn as one pass
+over both bands: its ray marches them together, as it would have composited them, and the
+pass's fragments (each a whole ray's fixed cost) are shaded once. Two bands so keep a pair of
+types at three passes, the type beneath drawn whole between the other's lower and upper part."""
 
 from __future__ import annotations
+
+import itertools
 
 import numpy as np
 
@@ -62,8 +67,8 @@ def stacked_parts(beneath: list[float | None], bands: int = HEIGHT_BANDS) -> lis
     passes of all types sorted by order are drawn in that order. Without one type standing
     over another, each type is one pass. Else the heights up to the tallest grass another
     stands over are cut into `bands` bands (the last reaches up to the sky), each type draws
-    each band, and in each band the type standing over another
-    goes first or second by turns, second in the top band."""
+    each band, and in each band the type standing over another goes first or second by turns,
+    second in the top band; a type's parts that follow each other in the order are one."""
     among = [b for b in beneath if b is not None]
     if not among:
         return [[((0, 0), (0.0, INF))] for _ in beneath]
@@ -76,4 +81,23 @@ def stacked_parts(beneath: list[float | None], bands: int = HEIGHT_BANDS) -> lis
             taller_first = (bands - 1 - k) % 2 == 1
             parts.append(((k, 0 if over == taller_first else 1), (edges[k], edges[k + 1])))
         out.append(parts)
+    return _merged(out)
+
+
+def _merged(parts: list[list[Part]]) -> list[list[Part]]:
+    """The parts with each run of one type's parts at turns that follow each other in the
+    drawing order made one part: the first's turn, the bands' union. (Types at the same turn
+    are drawn one after the other; of those, only one has slices: the others stand over none.)"""
+    turns = sorted({key for own in parts for key, _ in own})
+    after = dict(itertools.pairwise(turns))
+    out: list[list[Part]] = []
+    for own in parts:
+        kept: list[tuple[tuple[int, int], Band, tuple[int, int]]] = []
+        for key, band in own:
+            if kept and after.get(kept[-1][2]) == key:
+                first, (low, _), _ = kept[-1]
+                kept[-1] = (first, (low, band[1]), key)
+            else:
+                kept.append((key, band, key))
+        out.append([(key, band) for key, band, _ in kept])
     return out

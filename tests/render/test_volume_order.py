@@ -40,4 +40,13 @@ def test_types_among_each_other_are_drawn_in_bands_of_height_by_turns():
         assert all(a[1] == b[0] for a, b in itertools.pairwise(bands))
     order = sorted((key, name) for name, parts in (("tall", tall), ("short", short))
                    for key, _ in parts)  # fmt: skip
-    assert [name for _, name in order] == ["short", "tall", "tall", "short", "short", "tall"]
+    # a type's parts at turns one right after the other are one pass over their bands
+    assert [name for _, name in order] == ["short", "tall", "short", "tall"]
+
+
+def test_a_pair_of_types_takes_three_passes_the_lower_drawn_whole_between():
+    over, under = stacked_parts(beneath_heights([0.4, 0.2], [0.6, 0.3]))
+    assert under == [((0, 1), (0.0, INF))]
+    (first, low), (last, high) = over
+    assert first < under[0][0] < last
+    assert low == (0.0, 0.15) and high == (0.15, INF)
