@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 
+from core.facing import _seen
 from core.frustum import Frustum
 from core.heights import hills
 from core.lod import LodConfig
@@ -37,6 +38,11 @@ def main() -> None:
             *(np.zeros((1, 4, 4), np.float32) for _ in range(2)),
         )
     )
+    # the slope tables' weights (core/facing.py slope_moments), with the types it passes
+    k_m = np.zeros((2, 3), np.float32)
+    row = np.zeros(3, np.float32)
+    through = np.ones((2, 3), np.float32)
+    _seen(row[:2], k_m, k_m, k_m, row, row, through, 0.1, 1.0, True, k_m.copy(), k_m.copy())
     print(f"sward setup: numba kernels compiled in {time.perf_counter() - start:.1f} s")
 
 
