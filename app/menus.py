@@ -50,9 +50,9 @@ def build_menus(w) -> None:
 
     edit = w.menuBar().addMenu("&Edit")
     undo = w.undo_stack.createUndoAction(w, "&Undo")
-    undo.setShortcut(QKeySequence.StandardKey.Undo)
+    undo.setShortcuts(QKeySequence.StandardKey.Undo)
     redo = w.undo_stack.createRedoAction(w, "&Redo")
-    redo.setShortcut(QKeySequence.StandardKey.Redo)
+    redo.setShortcuts(QKeySequence.StandardKey.Redo)  # every key the platform binds to it
     edit.addActions([undo, redo])
 
     view = w.menuBar().addMenu("&View")

@@ -1,7 +1,10 @@
 """One latency session (benchmarks/latency.py starts it under a display): the designer on the
 default scene, continuous redraw on, driven with xdotool from a second thread while the window's
-thread records when each input event is handled and each frame is shown. Writes the raw
-records to $SWARD_LATENCY_OUT."""
+thread records when each input event is handled, each edit reaches the undo stack and each frame
+is shown. Every kind of input is sent REPS times, each edit followed by its undo and redo; the
+driver waits for the full frame that shows an input before it sends the next. Then the wind
+blows for a while and the frames shown are counted. Writes the raw records to
+$SWARD_LATENCY_OUT."""
 
 from __future__ import annotations
 
@@ -15,7 +18,7 @@ import time
 from pathlib import Path
 
 from PySide6.QtCore import QEvent, QObject, QPoint, QSettings, Qt, QTimer
-from PySide6.QtWidgets import QApplication, QMessageBox
+from PySide6.QtWidgets import QApplication, QMessageBox, QTabBar
 
 INPUT_EVENTS = {
     # a key that is a shortcut reaches the window as ShortcutOverride, not as KeyPress
@@ -26,7 +29,11 @@ INPUT_EVENTS = {
     QEvent.Type.MouseButtonRelease: "release",
     QEvent.Type.MouseMove: "move",
 }
-GAP_S = 4.0  # between inputs
+REPS = 5  # each input this many times
+WAIT_S = 15.0  # at most this long for the full frame that shows an input
+EFFECT_S = 3.0  # an input that changed nothing by then is recorded as missed
+SETTLE_S = 0.5  # after it, before the next input
+WIND_S = 6.0  # frames counted while the wind blows
 FIRST_FRAME_S = 600.0
 
 
@@ -35,19 +42,21 @@ def now_ms() -> float:
 
 
 class Probe(QObject):
-    """Event filter and frame log on the window's thread."""
+    """Event filter, undo-stack log and frame log on the window's thread."""
 
     def __init__(self, app: QApplication, window) -> None:
         super().__init__()
         self.events: list[dict] = []
         self.frames: list[dict] = []
+        self.edits: list[float] = []  # when the undo stack moved (an edit, an undo, a redo)
         self.timer_late: list[float] = []
         self._seen: set = set()
         app.installEventFilter(self)
         window.viewport.frame_rendered.connect(self._on_frame)
+        window.undo_stack.indexChanged.connect(lambda _index: self.edits.append(now_ms()))
         self._tick = QTimer(self, interval=10, timerType=Qt.TimerType.PreciseTimer)
         self._tick.timeout.connect(self._on_tick)
-        self._last_tick = None
+        self._last_tick: float | None = None
         self.recording = False
 
     def start(self) -> None:
@@ -80,27 +89,54 @@ class Probe(QObject):
                 "state_ms": stats.state_time * 1000.0,
                 "preview": bool(stats.preview),
                 "t_a_ms": stats.t_a_ms,
-                "blades": stats.blades,
             }
         )
 
 
-def xdo(*args: str) -> None:
-    subprocess.run(["xdotool", *args], check=True)
+def xdo(*args) -> None:
+    subprocess.run(["xdotool", *map(str, args)], check=True)
+
+
+def effect_time(entry: dict, probe: Probe) -> float | None:
+    """When the input took effect on the window's thread: an edit when the undo stack moved,
+    a view change when its first event of the kind was handled."""
+    sent = entry["sent_ms"]
+    if entry["effect"] == "edit":
+        later = [t for t in probe.edits if t >= sent]
+    else:
+        later = [
+            e["at_ms"] for e in probe.events if e["kind"] == entry["effect"] and e["at_ms"] >= sent
+        ]
+    return min(later) if later else None
+
+
+def measure(entry: dict, probe: Probe) -> bool:
+    """The input's first and full frame (ms after it was sent), once its full frame is shown."""
+    effect = effect_time(entry, probe)
+    if effect is None:
+        return False
+    showing = [f for f in list(probe.frames) if f["state_ms"] >= effect]
+    full = [f["shown_ms"] for f in showing if not f["preview"]]
+    if not full:
+        return False
+    entry["effect_ms"] = effect - entry["sent_ms"]
+    entry["first_frame_ms"] = min(f["shown_ms"] for f in showing) - entry["sent_ms"]
+    entry["full_frame_ms"] = min(full) - entry["sent_ms"]
+    return True
 
 
 class Driver(threading.Thread):
-    """The inputs, sent through the X server; each records when it was sent."""
+    """The inputs, sent through the X server; each records when its decisive event was sent
+    and waits for the full frame that shows it."""
 
-    def __init__(self, places: dict) -> None:
+    def __init__(self, places: dict, probe: Probe) -> None:
         super().__init__(daemon=True)
         self.places = places
+        self.probe = probe
         self.inputs: list[dict] = []
+        self.wind: dict = {}
         self.done = False
         self.error = ""
-
-    def mark(self, name: str, effect: str, **extra) -> None:
-        self.inputs.append({"name": name, "sent_ms": now_ms(), "effect": effect, **extra})
 
     def run(self) -> None:
         try:
@@ -109,108 +145,197 @@ class Driver(threading.Thread):
             self.error = repr(exc)
         self.done = True
 
+    # -- primitives --------------------------------------------------------------------------
+    def send(self, name: str, effect: str, *keys: str) -> None:
+        """The decisive input: keys (xdotool key names), its time recorded just before; then
+        wait for its full frame."""
+        entry = {"name": name, "effect": effect, "sent_ms": now_ms()}
+        self.inputs.append(entry)
+        if keys:
+            xdo("key", *keys)
+        self.wait(entry)
+
+    def wait(self, entry: dict) -> None:
+        start = time.monotonic()
+        while not measure(entry, self.probe):
+            waited = time.monotonic() - start
+            if waited > WAIT_S or (waited > EFFECT_S and effect_time(entry, self.probe) is None):
+                entry["missed"] = True  # no effect, or no full frame showing it
+                break
+            time.sleep(0.02)
+        entry["until_ms"] = now_ms()
+        time.sleep(SETTLE_S)
+
+    def click(self, place: str) -> None:
+        xdo("mousemove", *self.places[place], "click", "1")
+        time.sleep(0.3)
+
+    def away(self) -> None:
+        """Keyboard focus to the viewport (a click that does not drag), so that the undo and
+        redo shortcuts reach the window rather than a field's own undo."""
+        self.click("viewport_centre")
+
+    def undo_redo(self, name: str) -> None:
+        self.away()
+        self.send(f"{name}: undo", "edit", "ctrl+z")
+        self.send(f"{name}: redo", "edit", "ctrl+shift+z")
+
+    def pick(self, place: str, name: str, first_letters: tuple[str, str], rep: int) -> None:
+        """An entry of a drop-down list by the first letter of its text (a person's quickest
+        way): the first of the two on even repetitions, the second on odd ones."""
+        self.click(place)
+        self.send(name, "edit", first_letters[rep % 2], "Return")
+
+    # -- the script ----------------------------------------------------------------------------
     def _script(self) -> None:
-        p = self.places
-        cx, cy = p["viewport_centre"]
-        # a click on the status line gives the window the keyboard (no window manager here)
-        xdo("mousemove", *map(str, p["status_line"]), "click", "1")
-        xdo("mousemove", str(cx), str(cy))
+        cx, cy = self.places["viewport_centre"]
+        self.away()
+        xdo("mousemove", cx, cy)
         time.sleep(1.0)
-        for name in ("technique colours on", "technique colours off"):
-            self.mark(name, "key")
-            xdo("key", "t")
-            time.sleep(GAP_S)
-        self.mark("menu opened and closed", "none")
-        xdo("mousemove", *map(str, p["file_menu"]), "click", "1")
+        for _rep in range(REPS):
+            self.send("technique colours", "key", "t")
+        if REPS % 2:
+            xdo("key", "t")  # back to the shaded view
+            time.sleep(2.0)
+        for rep in range(REPS):
+            xdo("mousemove", cx, cy)
+            entry = {"name": "camera drag", "effect": "move", "sent_ms": now_ms()}
+            self.inputs.append(entry)
+            xdo("mousedown", "1")
+            sign = 1 if rep % 2 == 0 else -1
+            for step in range(1, 9):
+                xdo("mousemove", cx + sign * 12 * step, cy + 2 * step)
+                time.sleep(0.03)
+            xdo("mouseup", "1")
+            self.wait(entry)
+        for rep in range(REPS):
+            self.click("patch_tab")
+            self.click("blade_count")
+            xdo("key", "ctrl+a")
+            xdo("type", "1500" if rep % 2 == 0 else "1400")
+            self.send("blade count typed", "edit", "Return")
+            self.undo_redo("blade count typed")
+        for rep in range(REPS):
+            self.click("patch_tab")
+            self.pick("preset", "preset change", ("s", "u"), rep)
+            self.undo_redo("preset change")
+        for rep in range(REPS):
+            self.click("patch_tab")
+            xdo("mousemove", *self.places["patch_tree"])
+            xdo("click", "--repeat", "30", "5")  # the wheel, down to the slice count
+            self.pick("slices", "slice count", ("4", "8"), rep)
+            self.undo_redo("slice count")
+        self.click("patch_tab")
+        xdo("mousemove", *self.places["patch_tree"])
+        xdo("click", "--repeat", "30", "4")  # back up
+        for rep in range(REPS):
+            self.click("light_tab")
+            self.click("sun_elevation")
+            self.send("sun elevation", "edit", "Prior" if rep % 2 == 0 else "Next")
+            self.undo_redo("sun elevation")
+        for rep in range(REPS):
+            self.click("lod_tab")
+            self.click("lod_end")
+            self.send("LOD zone distance", "edit", "Up" if rep % 2 == 0 else "Down")
+            self.undo_redo("LOD zone distance")
+        for rep in range(REPS):
+            self.click("wind_tab")
+            self.pick("wind_preset", "wind preset", ("g", "l"), rep)
+            self.undo_redo("wind preset")
+        self.away()
+        xdo("mousemove", cx, cy + 120)
+        xdo("key", "b")  # paint in the viewport
         time.sleep(1.0)
-        xdo("key", "Escape")
-        time.sleep(GAP_S)
-        xdo("mousemove", str(cx), str(cy))
-        self.mark("camera drag", "move")
-        xdo("mousedown", "1")
-        for step in range(1, 9):
-            xdo("mousemove", str(cx + 12 * step), str(cy + 2 * step))
-            time.sleep(0.03)
-        xdo("mouseup", "1")
-        time.sleep(GAP_S)
-        bx, by = p["blade_count"]
-        xdo("mousemove", str(bx), str(by), "click", "1")
+        for rep in range(REPS):
+            entry = {"name": "paint stroke", "effect": "press", "sent_ms": now_ms()}
+            self.inputs.append(entry)
+            xdo("mousedown", "1")
+            for step in range(1, 9):
+                xdo("mousemove", cx - 100 + 25 * step, cy + 100 + 10 * rep)
+                time.sleep(0.03)
+            xdo("mouseup", "1")
+            self.wait(entry)
+            self.send("paint stroke: undo", "edit", "ctrl+z")
+            self.send("paint stroke: redo", "edit", "ctrl+shift+z")
+        xdo("key", "Escape")  # leave painting
+        self._wind()
+
+    def _wind(self) -> None:
+        """Frames shown per second while the wind blows (drafts count)."""
+        self.away()
+        xdo("key", "ctrl+shift+w")
+        time.sleep(1.5)
+        start = now_ms()
+        time.sleep(WIND_S)
+        end = now_ms()
+        shown = [f for f in list(self.probe.frames) if start <= f["shown_ms"] < end]
+        self.wind = {
+            "frames": len(shown),
+            "seconds": (end - start) / 1000.0,
+            "fps": len(shown) / ((end - start) / 1000.0),
+            "full": sum(not f["preview"] for f in shown),
+        }
+        xdo("key", "ctrl+shift+w")
         time.sleep(1.0)
-        xdo("key", "ctrl+a")
-        xdo("type", "1500")
-        self.mark("blade-parameter edit", "blades")
-        xdo("key", "Return")
-        time.sleep(GAP_S + 4.0)
-        xdo("mousemove", str(cx), str(cy + 120))
-        xdo("key", "b")
-        time.sleep(1.0)
-        self.mark("paint stroke", "press")
-        xdo("mousedown", "1")
-        for step in range(1, 9):
-            xdo("mousemove", str(cx - 100 + 25 * step), str(cy + 120))
-            time.sleep(0.03)
-        xdo("mouseup", "1")
-        time.sleep(GAP_S)
-        self.mark("undo", "key")
-        xdo("key", "ctrl+z")
-        time.sleep(GAP_S)
 
 
-def places(window) -> dict:
-    """Screen positions of the controls the driver uses."""
-    vp = window.viewport
-    centre = vp.mapToGlobal(vp.rect().center())
-    bar = window.menuBar()
-    file_at = bar.mapToGlobal(bar.actionGeometry(bar.actions()[0]).center())
-    tree = window.panel.tree
-    item = next(iter(window.panel.param("blade_count").items))
+def _centre(widget, point: QPoint | None = None) -> tuple[int, int]:
+    at = widget.mapToGlobal(point if point is not None else widget.rect().center())
+    return at.x(), at.y()
+
+
+def _tree_value(tree, param) -> tuple[int, int]:
+    """The value column of a ParameterTree's row for `param`."""
+    item = next(iter(param.items))
     rect = tree.visualItemRect(item)
-    value_x = tree.header().sectionPosition(1) + 30
-    blade = tree.viewport().mapToGlobal(QPoint(value_x, rect.center().y()))
-    status = window.statusBar()
-    status_at = status.mapToGlobal(status.rect().center())
-    return {
-        "status_line": (status_at.x(), status_at.y()),
-        "viewport_centre": (centre.x(), centre.y()),
-        "file_menu": (file_at.x(), file_at.y()),
-        "blade_count": (blade.x(), blade.y()),
+    return _centre(
+        tree.viewport(), QPoint(tree.header().sectionPosition(1) + 30, rect.center().y())
+    )
+
+
+def places(app: QApplication, window) -> dict:
+    """Screen positions of the controls the driver uses, each dock raised in turn to lay it
+    out; the patch dock raised last."""
+    out: dict = {}
+    out["viewport_centre"] = _centre(window.viewport)
+    docks = {
+        "wind": window.wind_dock,
+        "lod": window.lod_dock,
+        "light": window.light_dock,
+        "patch": window.patch_dock,
     }
-
-
-def effect_time(entry: dict, events: list[dict], frames: list[dict]) -> float | None:
-    """When the input took effect on the window's thread (its first handled event)."""
-    kinds = {"key": ("key",), "move": ("move",), "press": ("press",), "blades": ("key",)}
-    wanted = kinds.get(entry["effect"])
-    if wanted is None:
-        return None
-    later = [e["at_ms"] for e in events if e["kind"] in wanted and e["at_ms"] >= entry["sent_ms"]]
-    return min(later) if later else None
-
-
-def shows(entry: dict, frame: dict, effect: float, frames: list[dict]) -> bool:
-    if frame["state_ms"] < effect:
-        return False
-    if entry["effect"] != "blades":
-        return True
-    before = [f["blades"] for f in frames if f["state_ms"] < entry["sent_ms"]]
-    return bool(before) and frame["blades"] != before[-1]
-
-
-def measure(inputs: list[dict], events: list[dict], frames: list[dict]) -> None:
-    for entry in inputs:
-        effect = effect_time(entry, events, frames)
-        entry["effect_ms"] = effect
-        if effect is None:
-            continue
-        showing = [f for f in frames if shows(entry, f, effect, frames)]
-        first = min((f["shown_ms"] for f in showing), default=None)
-        full = min((f["shown_ms"] for f in showing if not f["preview"]), default=None)
-        entry["first_frame_ms"] = None if first is None else first - entry["sent_ms"]
-        entry["full_frame_ms"] = None if full is None else full - entry["sent_ms"]
+    for name, dock in docks.items():
+        dock.raise_()
+        for _ in range(20):
+            app.processEvents()
+            time.sleep(0.01)
+        for bar in window.findChildren(QTabBar):
+            for i in range(bar.count()):
+                if bar.tabText(i) == dock.windowTitle():
+                    out[f"{name}_tab"] = _centre(bar, bar.tabRect(i).center())
+        if name == "patch":  # the slice count lies below the blades: scrolled to the bottom
+            panel = window.panel
+            out["patch_tree"] = _centre(panel.tree.viewport())
+            panel.tree.scrollToBottom()
+            app.processEvents()
+            out["slices"] = _tree_value(panel.tree, panel.param("slices"))
+            panel.tree.scrollToTop()
+            app.processEvents()
+            for param in ("blade_count", "preset"):
+                out[param] = _tree_value(panel.tree, panel.param(param))
+        elif name == "light":
+            panel = window.light_panel
+            out["sun_elevation"] = _tree_value(panel.tree, panel.root.child("sun_elevation"))
+        elif name == "lod":
+            out["lod_end"] = _centre(window.lod_panel.end_box(0))
+        elif name == "wind":
+            out["wind_preset"] = _centre(window.wind_panel.preset_box)
+    return out
 
 
 def main() -> int:
     out = Path(os.environ["SWARD_LATENCY_OUT"])
+    launched = float(os.environ.get("SWARD_LATENCY_LAUNCHED_MS", now_ms()))
     settings = tempfile.mkdtemp(prefix="sward-latency-")
     QSettings.setPath(QSettings.Format.NativeFormat, QSettings.Scope.UserScope, settings)
     QMessageBox.question = lambda *a, **k: QMessageBox.StandardButton.Discard
@@ -234,13 +359,14 @@ def main() -> int:
         time.sleep(0.005)
         if time.monotonic() - start > FIRST_FRAME_S:
             raise SystemExit("latency session: no full frame within the time limit")
+    startup_ms = next(f["shown_ms"] for f in probe.frames if not f["preview"]) - launched
     window.activateWindow()  # keys go to the window with the input focus
     focused = time.monotonic()
     while not window.isActiveWindow() and time.monotonic() - focused < 10.0:
         app.processEvents()
         time.sleep(0.01)
     window.profile_panel.continuous_box.setChecked(True)
-    driver = Driver(places(window))
+    driver = Driver(places(app, window), probe)
     probe.start()
     driver.start()
     check = QTimer(interval=100)
@@ -248,11 +374,12 @@ def main() -> int:
     check.start()
     app.exec()
     probe.recording = False
-    measure(driver.inputs, probe.events, probe.frames)
     vp = window.viewport
     result = {
         "viewport": [vp.width(), vp.height()],
+        "startup_ms": startup_ms,
         "inputs": driver.inputs,
+        "wind": driver.wind,
         "events": probe.events,
         "frames": probe.frames,
         "timer_late_ms": probe.timer_late,

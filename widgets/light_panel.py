@@ -38,6 +38,10 @@ class LightPanel(QWidget):
                 "step": step,
                 "suffix": suffix,
                 "value": getattr(lighting, name),
+                # a light edit costs the next frame nothing per blade: apply each step at once
+                # (the spin box's default waits 0.3 s for more; consecutive steps merge into
+                # one undo step, app/commands.py)
+                "delay": 0.0,
             }
             for name, title, low, high, step, suffix in NUMBERS
         ] + [

@@ -262,6 +262,15 @@ def test_the_light_panel_relights_the_grass_undoably_and_is_saved(window, qtbot,
     window.undo_stack.undo()
     assert window.document.light.sun_elevation == 50.0
     assert window.light_panel.root.child("sun_elevation").value() == 50.0
+    # undo and redo from the keyboard, with the platform's keys (Ctrl+Shift+Z redoes on X11)
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    window.viewport.setFocus()
+    ctrl = Qt.KeyboardModifier.ControlModifier
+    qtbot.keyClick(window.viewport, Qt.Key.Key_Z, ctrl | Qt.KeyboardModifier.ShiftModifier)
+    assert window.document.light.sun_elevation == 5.0
+    qtbot.keyClick(window.viewport, Qt.Key.Key_Z, ctrl)
+    assert window.document.light.sun_elevation == 50.0
 
 
 def test_a_bookmarked_view_is_in_the_camera_menu_and_the_saved_project(window, tmp_path):
