@@ -240,7 +240,7 @@ class Driver(threading.Thread):
             self.undo_redo("LOD zone distance")
         for rep in range(REPS):
             self.click("wind_tab")
-            self.pick("wind_preset", "wind preset", ("g", "l"), rep)
+            self.pick("wind_preset", "wind preset", ("l", "s"), rep)
             self.undo_redo("wind preset")
         self.away()
         xdo("mousemove", cx, cy + 120)

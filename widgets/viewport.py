@@ -9,8 +9,10 @@ W A S D move and Q E sink and rise.
 While the document's wind blows, the view animates: each state asked for carries the moment of
 the wind (seconds of wind since it started blowing here), and the next moment is asked for as
 soon as the full-quality frame of the last one is on screen, or after ANIMATION_STEP_MS when
-that frame is slower (a CPU renderer then shows drafts while the wind blows, as while the
-camera moves). With `sharp_wind` (View → Sharp wind frames) a new moment waits for the full
+that frame is slower. Where a full frame takes longer than ANIMATION_STEP_MS (a CPU renderer),
+the wind shows drafts, as the camera does while it moves, and the next moment is asked for as
+soon as the draft of the last one is on screen: the wind then moves as fast as drafts come,
+not once per ANIMATION_STEP_MS. With `sharp_wind` (View → Sharp wind frames) a new moment waits for the full
 frame of the last one and is drawn without a draft: fewer moments a second on a slow renderer,
 each at full quality. Switching the wind off holds the grass still, and so does the Quality
 view while it is on (its all-geometry reference takes seconds: the next moment would give it
@@ -104,6 +106,7 @@ class GrassViewport(QWidget):
         self._wind_step = QTimer(self, singleShot=True, interval=ANIMATION_STEP_MS)
         self.sharp_wind = False  # each moment of the wind at full quality, no drafts
         self._draft = False  # whether the frame asked for next needs a draft first
+        self._full_ms = 0.0  # how long the last full-quality frame took to draw
         self._wind_step.timeout.connect(self._next_moment)
         self.renderer = RenderClient(self._on_frame, self.status_changed.emit, self._on_restart)
         self._notifiers: list[QSocketNotifier] = []
@@ -267,8 +270,13 @@ class GrassViewport(QWidget):
         self.last_stats = frame.stats
         self.update()
         self.frame_rendered.emit(frame.stats)
-        if self.animating and not frame.stats.preview and frame.version == self.version:
-            self._wind_step.stop()  # the full frame is on screen: the next moment now
+        if not frame.stats.preview:
+            self._full_ms = frame.stats.t_a_ms
+        # the full frame is on screen, or a draft where full frames are too slow to follow the
+        # wind: the next moment now
+        slow = not self.sharp_wind and self._full_ms > ANIMATION_STEP_MS
+        if self.animating and frame.version == self.version and (not frame.stats.preview or slow):
+            self._wind_step.stop()
             QTimer.singleShot(0, self._next_moment)
         self._ask_quality()
 
