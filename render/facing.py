@@ -28,11 +28,12 @@ from core.facing import (
 )
 from core.lighting import Lighting
 from core.patch import GrassPatch
+from render import shared_sums
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 SLOPE_UNIT = 12  # texture unit of the slope-ratio table
 KEPT_TABLES = 8  # slope-table sums kept by the patch and canopy they are of (a build: a second)
-_kept: OrderedDict[tuple, SlopeMoments] = OrderedDict()
+_kept: OrderedDict[str, SlopeMoments] = OrderedDict()
 
 
 def kept_slope_moments(
@@ -41,19 +42,24 @@ def kept_slope_moments(
     """core/facing.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
     each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
     and the full frame's, every test's), a build takes about a second, and every light is a
-    small product of the same sums (core/light_moments.py). None if they are not kept and not
-    `build`."""
+    small product of the same sums (core/light_moments.py). Sums another render process of the
+    designer built are read from it (render/shared_sums.py), and those built here handed to it.
+    None if they are neither kept nor handed over and not `build`."""
     digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
     for sigma, colour in canopy.profiles:
         digest.update(np.ascontiguousarray(sigma).tobytes())
         digest.update(np.ascontiguousarray(colour).tobytes())
-    key = (digest.digest(), canopy.height)
+    digest.update(np.float64(canopy.height).tobytes())
+    key = digest.hexdigest()
     moments = _kept.get(key)
-    if moments is None and not build:
-        return None
     if moments is None:
-        v = patch.vertices
-        moments = slope_moments_table(v["normal"], v["position"], v["root"], canopy)
+        moments = shared_sums.load(key)
+        if moments is None and not build:
+            return None
+        if moments is None:
+            v = patch.vertices
+            moments = slope_moments_table(v["normal"], v["position"], v["root"], canopy)
+            shared_sums.save(key, moments)
         _kept[key] = moments
         while len(_kept) > KEPT_TABLES:
             _kept.popitem(last=False)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import shutil
 import socket
 import subprocess
 import sys
@@ -27,6 +28,7 @@ from core.project_file import document_data
 from core.stats import FrameStats
 from render.design_maps import union
 from render.render_server import DRAFT, FULL, MappedArray
+from render.shared_sums import SHARED_DIR_ENV
 
 ROLES = (DRAFT, FULL)
 
@@ -104,6 +106,9 @@ class RenderClient:
         self._handlers: dict = {}
         self._changed: Callable[[], None] = lambda: None
         self._closed = False
+        # the folder the two processes hand each other the slope tables' sums in
+        # (render/shared_sums.py), for this window's session
+        self._shared = tempfile.mkdtemp(prefix="sward-sums-")
         self.processes: dict[str, _Process] = {role: self._start(role) for role in ROLES}
 
     # -- processes ---------------------------------------------------------------------------
@@ -114,6 +119,7 @@ class RenderClient:
         process = subprocess.Popen(
             [sys.executable, "-m", "render.render_server", role, str(theirs.fileno())],
             pass_fds=(theirs.fileno(),),
+            env={**os.environ, SHARED_DIR_ENV: self._shared},
         )
         theirs.close()
         return _Process(role, process, Connection(mine.detach()))
@@ -334,3 +340,4 @@ class RenderClient:
             with contextlib.suppress(OSError):
                 p.conn.close()
             p.release_files()
+        shutil.rmtree(self._shared, ignore_errors=True)

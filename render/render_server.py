@@ -20,6 +20,7 @@ from __future__ import annotations
 import contextlib
 import mmap
 import os
+import time
 import traceback
 
 import numpy as np
@@ -35,6 +36,12 @@ from render.slices import SliceTextures
 DRAFT, FULL = "draft", "full"
 DRAFT_SCALE = 4  # drafts are drawn at 1 / 4 of the width and height
 FULL_NICE = 10
+# The draft process makes what a draft lacked (slices, light sums) once the window has asked
+# for no frame this long: the full-quality process makes the same for its frame at a lower priority, and
+# on a CPU renderer the two shared the cores, so the full frame after a blade edit (and the
+# first one after start) waited for both.
+REFINE_IDLE_S = 1.0
+REFINE_WAIT_S = 3.0  # but no longer than this after the draft that lacked them (the wind asks on)
 
 
 class MappedArray:
@@ -70,6 +77,8 @@ class RenderServer:
         self.continuous = False
         self.waiting_ack = False
         self.refine = False  # a draft that lacked slices: convert, then draw it again
+        self._asked_at = 0.0  # monotonic() when the window last asked for a frame
+        self._lacked_at = 0.0  # monotonic() when a draft first lacked what refine_one makes
         self._targets: dict[tuple[int, int], object] = {}
 
     # -- messages ----------------------------------------------------------------------------
@@ -139,6 +148,7 @@ class RenderServer:
 
     def _on_frame(self, request: dict) -> None:
         self.request = request
+        self._asked_at = time.monotonic()
 
     def _on_ack(self) -> None:
         self.waiting_ack = False
@@ -221,6 +231,8 @@ class RenderServer:
         stats.state_time = request["state_time"]
         self._send_frame(request, context.read_rgb(fbo, (w, h), 4), stats)
         if draft and (self.pipeline.missing() or self.pipeline.stale_light_sums()):
+            if not self.refine:
+                self._lacked_at = time.monotonic()
             self.refine = True
 
     def _draw_quality(self, request: dict) -> None:
@@ -288,6 +300,12 @@ class RenderServer:
                 if self.continuous and request["kind"] == "view":
                     self.request = request  # frame after frame, the same state
             elif self.refine:
+                now = time.monotonic()
+                wait = min(
+                    REFINE_IDLE_S - (now - self._asked_at), REFINE_WAIT_S - (now - self._lacked_at)
+                )
+                if wait > 0.0 and self.conn.poll(wait):
+                    continue  # a message first (a new frame asked for waits for no refinement)
                 self.refine_one()
                 if self.last is not None and self.request is None:
                     self.request = self.last

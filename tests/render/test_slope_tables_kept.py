@@ -51,3 +51,29 @@ def test_sums_are_built_once_for_a_patch_and_canopy_and_every_light_uses_them():
     regrown = kept_slope_tables(other, canopy, light)
     for table in (turned, denser, regrown):
         assert np.abs(table - first).max() > 1e-3  # a table of its own, not the kept one
+
+
+def test_the_designers_render_processes_hand_each_other_the_sums(tmp_path, monkeypatch):
+    """What one render process built, the other reads from the folder they share (render/
+    shared_sums.py) rather than building it again; without that folder nothing is written."""
+    from render import facing, shared_sums
+
+    patch = generate_patch(PatchParams(blade_count=200, seed=3))
+    canopy = _canopy(0.4)
+    light = Lighting(sun_azimuth=200.0)
+    monkeypatch.setattr(facing, "_kept", facing.OrderedDict())  # this process keeps nothing
+    built = kept_slope_tables(patch, canopy, light)
+    assert not list(tmp_path.iterdir())  # no folder named: nothing shared
+
+    monkeypatch.setenv(shared_sums.SHARED_DIR_ENV, str(tmp_path))
+    monkeypatch.setattr(facing, "_kept", facing.OrderedDict())
+    kept_slope_tables(patch, canopy, light)  # built, and handed over
+    assert len(list(tmp_path.glob("slope-*.npz"))) == 1
+    monkeypatch.setattr(facing, "_kept", facing.OrderedDict())  # the other process
+    handed = kept_slope_moments(patch, canopy, build=False)  # a draft: read, never built
+    assert handed is not None
+    tables = slope_ratios(handed, light.sun_direction, light.translucency)
+    np.testing.assert_allclose(tables, built, atol=1e-5)
+    # another patch is not handed the first one's sums
+    other = generate_patch(PatchParams(blade_count=200, seed=4))
+    assert kept_slope_moments(other, canopy, build=False) is None
