@@ -26,6 +26,7 @@ from core.facing import (
     slope_moments_table,
     slope_ratios,
 )
+from core.light_moments import LightMoments
 from core.lighting import Lighting
 from core.patch import GrassPatch
 from render import shared_sums
@@ -34,6 +35,25 @@ FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 SLOPE_UNIT = 12  # texture unit of the slope-ratio table
 KEPT_TABLES = 8  # slope-table sums kept by the patch and canopy they are of (a build: a second)
 _kept: OrderedDict[str, SlopeMoments] = OrderedDict()
+_kept_facing: OrderedDict[str, LightMoments] = OrderedDict()
+
+
+def _digest(patch: GrassPatch, canopy: Canopy | None) -> str:
+    """The content of a patch and canopy: sums kept by it stand in for no other."""
+    digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
+    if canopy is not None:
+        for sigma, colour in canopy.profiles:
+            digest.update(np.ascontiguousarray(sigma).tobytes())
+            digest.update(np.ascontiguousarray(colour).tobytes())
+        digest.update(np.float64(canopy.height).tobytes())
+    return digest.hexdigest()
+
+
+def _keep(kept: OrderedDict, key: str, value) -> None:
+    kept[key] = value
+    kept.move_to_end(key)
+    while len(kept) > KEPT_TABLES:
+        kept.popitem(last=False)
 
 
 def kept_slope_moments(
@@ -45,12 +65,7 @@ def kept_slope_moments(
     small product of the same sums (core/light_moments.py). Sums another render process of the
     designer built are read from it (render/shared_sums.py), and those built here handed to it.
     None if they are neither kept nor handed over and not `build`."""
-    digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
-    for sigma, colour in canopy.profiles:
-        digest.update(np.ascontiguousarray(sigma).tobytes())
-        digest.update(np.ascontiguousarray(colour).tobytes())
-    digest.update(np.float64(canopy.height).tobytes())
-    key = digest.hexdigest()
+    key = _digest(patch, canopy)
     moments = _kept.get(key)
     if moments is None:
         moments = shared_sums.load(key)
@@ -60,10 +75,21 @@ def kept_slope_moments(
             v = patch.vertices
             moments = slope_moments_table(v["normal"], v["position"], v["root"], canopy)
             shared_sums.save(key, moments)
-        _kept[key] = moments
-        while len(_kept) > KEPT_TABLES:
-            _kept.popitem(last=False)
-    _kept.move_to_end(key)
+    _keep(_kept, key, moments)
+    return moments
+
+
+def kept_facing_moments(patch: GrassPatch, canopy: Canopy | None) -> LightMoments:
+    """core/facing.py facing_moments of this patch (each vertex seen through `canopy` where
+    given), the last KEPT_TABLES kept by content: an undo or redo of a blade edit brings back
+    a patch whose sums were built before."""
+    key = _digest(patch, canopy)
+    moments = _kept_facing.get(key)
+    if moments is None:
+        v = patch.vertices
+        seen = None if canopy is None else (v["position"][:, 1], canopy)
+        moments = facing_moments(v["normal"], seen=seen)
+    _keep(_kept_facing, key, moments)
     return moments
 
 
@@ -102,9 +128,7 @@ class FacingTable:
         held = self._moments
         stale = held is None or held[0] is not patch or held[1] is not canopy
         if held is None or (stale and not draft):
-            v = patch.vertices
-            seen = None if canopy is None else (v["position"][:, 1], canopy)
-            held = self._moments = (patch, canopy, facing_moments(v["normal"], seen=seen), None)
+            held = self._moments = (patch, canopy, kept_facing_moments(patch, canopy), None)
         if bend and held[3] is None and (held[0] is patch or not draft):
             held = self._moments = (*held[:3], bend_moments(held[0].vertices, held[1]))
         return held

@@ -77,3 +77,18 @@ def test_the_designers_render_processes_hand_each_other_the_sums(tmp_path, monke
     # another patch is not handed the first one's sums
     other = generate_patch(PatchParams(blade_count=200, seed=4))
     assert kept_slope_moments(other, canopy, build=False) is None
+
+
+def test_facing_sums_come_back_with_a_patch_of_the_same_content():
+    """An undo of a blade edit regenerates the patch before it: its facing sums are kept."""
+    from render.facing import kept_facing_moments
+
+    patch = generate_patch(PatchParams(blade_count=250, seed=5))
+    canopy = _canopy(0.3)
+    sums = kept_facing_moments(patch, canopy)
+    again = generate_patch(PatchParams(blade_count=250, seed=5))  # regenerated: a new object
+    assert again is not patch and kept_facing_moments(again, canopy) is sums
+    assert kept_facing_moments(patch, None) is not sums  # seen through no canopy: its own
+    other = kept_facing_moments(generate_patch(PatchParams(blade_count=250, seed=6)), canopy)
+    light = Lighting().sun_direction
+    assert np.abs(other.lit(light, 0.3) - sums.lit(light, 0.3)).max() > 1e-3
