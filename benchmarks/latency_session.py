@@ -212,7 +212,7 @@ class Driver(threading.Thread):
             self.click("patch_tab")
             self.click("blade_count")
             xdo("key", "ctrl+a")
-            xdo("type", "1500" if rep % 2 == 0 else "1400")
+            xdo("type", str(1500 - 100 * rep))  # a new patch each time
             self.send("blade count typed", "edit", "Return")
             self.undo_redo("blade count typed")
         for rep in range(REPS):
