@@ -14,21 +14,11 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
-from core.facing import (
-    ACROSS,
-    AZIMUTHS,
-    ELEVATIONS,
-    SLOPES,
-    SlopeMoments,
-    bend_coefficients,
-    bend_moments,
-    facing_moments,
-    slope_moments_table,
-    slope_ratios,
-)
+from core.facing import AZIMUTHS, ELEVATIONS, bend_coefficients, bend_moments, facing_moments
 from core.light_moments import LightMoments
 from core.lighting import Lighting
 from core.patch import GrassPatch
+from core.slopes import ACROSS, SLOPES, SlopeMoments, slope_moments_table, slope_ratios
 from render import shared_sums
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
@@ -59,7 +49,7 @@ def _keep(kept: OrderedDict, key: str, value) -> None:
 def kept_slope_moments(
     patch: GrassPatch, canopy: Canopy, build: bool = True
 ) -> SlopeMoments | None:
-    """core/facing.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
+    """core/slopes.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
     each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
     and the full frame's, every test's), a build takes about a second, and every light is a
     small product of the same sums (core/light_moments.py). Sums another render process of the
@@ -186,7 +176,7 @@ class FacingTable:
 
 
 class SlopeTable:
-    """The slope-ratio tables of one grass type (core/facing.py slope_tables), by view direction,
+    """The slope-ratio tables of one grass type (core/slopes.py slope_tables), by view direction,
     elevation over the ground and the ground's rise across the view: upright blades on sloping
     ground against the sheared slices (red: the volume multiplies its diffuse factor by it) and
     against upright blades on flat ground (green: the image-based grass, lit by the flat

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from core.facing import SlopeMoments
 from core.light_moments import LightMoments
+from core.slopes import SlopeMoments
 
 SHARED_DIR_ENV = "SWARD_SHARED_SUMS"
 KEPT_FILES = 8  # the newest files kept in the folder

@@ -7,12 +7,12 @@ import time
 
 import numpy as np
 
-from core.facing import _seen
 from core.frustum import Frustum
 from core.heights import hills
 from core.lod import LodConfig
 from core.mipmaps import build_mips_stack, weighted_chain
 from core.occupancy import DensityOccupancy
+from core.slopes import _seen
 from core.terrain import Terrain
 from core.tiling import mirror_bits
 from core.traversal import traverse
@@ -38,7 +38,7 @@ def main() -> None:
             *(np.zeros((1, 4, 4), np.float32) for _ in range(2)),
         )
     )
-    # the slope tables' weights (core/facing.py slope_moments), with the types it passes
+    # the slope tables' weights (core/slopes.py slope_moments), with the types it passes
     k_m = np.zeros((2, 3), np.float32)
     row = np.zeros(3, np.float32)
     through = np.ones((2, 3), np.float32)

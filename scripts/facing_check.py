@@ -35,8 +35,8 @@ CENTRE = 0.0  # the centre of the bench's 32 × 32 cells (its origin is at -16, 
 
 def main() -> None:
     from app.scenes import CameraSpec, get_scene
-    from core.facing import slope_moments
     from core.project_file import load_project
+    from core.slopes import slope_moments
     from core.wind import Wind, lean
     from render.context import standalone
     from render.headless import HeadlessRenderer
@@ -51,7 +51,7 @@ def main() -> None:
     ap.add_argument("--modes", default="geometry,image")
     ap.add_argument(
         "--predict", action="store_true",
-        help="also core/facing.py slope_moments' upright and sheared diffuse factor at each view",
+        help="also core/slopes.py slope_moments' upright and sheared diffuse factor at each view",
     )  # fmt: skip
     ap.add_argument(
         "--wind", default=None,
@@ -159,14 +159,14 @@ def main() -> None:
 
 def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans):
     """The blades' mean diffuse factor seen from `to_eye` ((m, 3)) with every blade bent by
-    each tip displacement of `leans` ((j, 2)): (j, m). core/facing.py's slope_moments weigh the
+    each tip displacement of `leans` ((j, 2)): (j, m). core/slopes.py's slope_moments weigh the
     bent normals (on flat ground its sheared mean: |n · e| times the share of a view from e's
     elevation that reaches the vertex), at the vertices' bent heights, the bent canopy stretched
     back to its height at rest (weighing them at their heights at rest, the model predicted
     brighter blades where they measure darker). The model of a table for the far
     representations under the wind: it holds looking down, not at grazing views (README,
     wind)."""
-    from core.facing import slope_moments
+    from core.slopes import slope_moments
     from core.wind import bend_vertices
 
     e = np.asarray(to_eye, np.float64).reshape(-1, 3)

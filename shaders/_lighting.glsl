@@ -58,17 +58,17 @@ float facing_leaned(Facing f, vec2 lean) {
 }
 
 // Upright blades on sloping ground against the slices, which are sheared with it (core/
-// facing.py slope_tables, render/facing.py): the factor on a far representation's diffuse light
+// slopes.py slope_tables, render/facing.py): the factor on a far representation's diffuse light
 // seen from to_eye at elevation theta over the ground (radians), the ground rising `across` per
 // unit of run to the viewer's right; 1 on flat ground. Within a block the table's layers hold
 // elevations over the ground minus over the horizon of SPAN · t|t|, t in -1 … 1; the blocks,
 // one after another along z, hold rises across the view of ACROSS_SPAN · s|s|, s in -1 … 1.
 uniform bool u_slopes;
 uniform sampler3D u_slope_ratio;
-const float SLOPE_SPAN = 0.52359878;  // core/facing.py SLOPE_SPAN (30°)
-const float SLOPE_LAYERS = 9.0;       // core/facing.py SLOPES
-const float ACROSS_SPAN = 0.6;        // core/facing.py ACROSS_SPAN
-const float ACROSS_BLOCKS = 7.0;      // core/facing.py ACROSS
+const float SLOPE_SPAN = 0.52359878;  // core/slopes.py SLOPE_SPAN (30°)
+const float SLOPE_LAYERS = 9.0;       // core/slopes.py SLOPES
+const float ACROSS_SPAN = 0.6;        // core/slopes.py ACROSS_SPAN
+const float ACROSS_BLOCKS = 7.0;      // core/slopes.py ACROSS
 
 // the ground's rise per unit of run to the right of a view towards -to_eye, from its gradient
 // (d height / dx, d height / dz)

@@ -238,7 +238,7 @@ void main() {
     // the blades' mean diffuse factor seen along the ray, as bent by the wind here
     float facing = u_wind_on ? facing_leaned(facing_entry(-d), lean) : facing_lambert(-d);
     // The slices are sheared with the ground, the blades stand upright on it: on a slope the
-    // light differs by the ratio of the two (core/facing.py slope_tables, its first layer), at
+    // light differs by the ratio of the two (core/slopes.py slope_tables, its first layer), at
     // the ray's elevation over the ground where it enters (tan θ = (u · n) / (n_y |u_xz|), as
     // in image.glsl).
     vec2 slope = vec2(

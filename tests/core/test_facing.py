@@ -74,7 +74,7 @@ def _uniform_canopy(height: float = 1.0):
 
 
 def test_slope_ratios_are_one_on_flat_ground():
-    from core.facing import ACROSS, SLOPES, slope_tables
+    from core.slopes import ACROSS, SLOPES, slope_tables
 
     rng = np.random.default_rng(5)
     normals = rng.normal(size=(400, 3))
@@ -94,7 +94,7 @@ def test_upright_blades_on_a_slope_show_the_parts_that_lean_down_it():
     eye, the tips leaning up the slope come close to it and hide: upright blades are darker than
     blades sheared with the ground (ratio < 1; the volume's layer) and than upright blades on
     flat ground (the image-based grass's layer); where it falls away, brighter (> 1)."""
-    from core.facing import ACROSS, SLOPES, slope_tables
+    from core.slopes import ACROSS, SLOPES, slope_tables
 
     k = 200
     roots = np.zeros((2 * k, 2))
@@ -118,7 +118,7 @@ def test_upright_blades_on_ground_rising_across_the_view_show_the_parts_that_lea
     than flat ground; where it falls to the right, brighter. A hillside seen obliquely has
     both rises: with the rise along the view alone the model was 4.5 % too dark there
     (core/facing.py)."""
-    from core.facing import ACROSS, SLOPES, slope_tables
+    from core.slopes import ACROSS, SLOPES, slope_tables
 
     k = 200
     roots = np.zeros((2 * k, 2))

@@ -58,7 +58,7 @@ def test_the_linear_part_is_exact_and_both_faces_of_a_normal_share_the_sums():
 
 def test_no_normals_light_nothing_and_change_no_slope():
     from core.canopy import Canopy
-    from core.facing import slope_tables
+    from core.slopes import slope_tables
 
     sun = Lighting().sun_direction
     assert not facing_moments(np.zeros((4, 3))).lit(sun, 0.3).any()

@@ -1,4 +1,4 @@
-"""The slope-ratio tables' sums over the blades (core/facing.py slope_moments_table) take about a
+"""The slope-ratio tables' sums over the blades (core/slopes.py slope_moments_table) take about a
 second to build, and each renderer of a grass type has its own texture of them: render/facing.py
 keeps the last few by the patch and canopy they are of, and a light change is a small product
 of the same sums. Kept sums must never stand in for another patch or canopy, and the tables of
@@ -11,10 +11,10 @@ import dataclasses
 import numpy as np
 
 from core.canopy import Canopy
-from core.facing import slope_ratios
 from core.lighting import Lighting
 from core.params import PatchParams
 from core.patch import generate_patch
+from core.slopes import slope_ratios
 from render.facing import kept_slope_moments
 
 

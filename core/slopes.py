@@ -1,0 +1,246 @@
+"""How upright blades on sloping ground light against the slices sheared with it: the slope-ratio
+tables the far representations multiply their light by (shaders/_lighting.glsl slope_ratios),
+from sums over the patch's blades that any light turns into a table (core/light_moments.py).
+core/facing.py holds the table of the blades on flat ground these ratios scale."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from core.canopy import Canopy
+from core.facing import AZIMUTHS, ELEVATIONS, directions
+from core.light_moments import LightMoments, powers
+
+# -- upright blades on sloping ground ---------------------------------------------------------
+# A blade stands upright wherever it grows (thesis eq. 6.13: the whole blade rises by its
+# root's ground), so on a slope the parts of it that lean downhill stand higher over the ground
+# beneath them, and those that lean uphill lower, some under it. The slices instead are
+# sheared by the ground under each sample (eqs. 6.16–6.18): every part keeps its height over
+# the ground below it, as if the blades lay on the slope. Seen along a slope that rises away
+# from the eye, the upright blades show their downhill parts, whose eye-facing sides turn down
+# and away from the light: on a 14° ramp seen at 5° the blades' diffuse factor is 0.39, the
+# sheared slices' 0.44; slope_moments' model of each gives 0.395 and 0.450 (scripts/
+# facing_check.py --height-scale 8 --elevations 5 --azimuths 0 --predict; flat ground 0.44).
+SLOPES = 9  # ratio-table layers: the view's elevation over the ground minus over the horizon
+SLOPE_SPAN = np.radians(30.0)  # the outer layers' difference; layer t in -1 … 1 is SPAN · t|t|
+RATIO_LIMITS = (0.5, 2.0)  # where a view grazes the ground a few blade tips decide the ratio
+GRAZING = np.radians(1.0)  # the least elevation over the ground a view is counted at
+MAX_RISE = 1.0  # ground steeper than 45° along the view counts as 45°
+# The ground may also rise across the view (a hillside seen obliquely): the upright blades' parts
+# that lean across it then stand higher or lower over the ground beside them, and which of them
+# show depends on it too. Seen 39° off a 14° ramp's fall line with the sun 84° to the side, the
+# blades' diffuse factor is 0.313 (0.320 flat); the model with the rise along the view alone
+# gave 0.299, with the rise across it as well 0.315 (scripts/facing_check.py --azimuths 321).
+ACROSS = 7  # ratio-table blocks: the ground's rise across the view, per unit of run
+ACROSS_SPAN = 0.6  # the outer blocks' rise; block t in -1 … 1 is SPAN · t|t| (to the right: +)
+
+
+def slope_offsets(count: int = SLOPES) -> np.ndarray:
+    """The table layers' elevation over the ground minus elevation over the horizon (radians):
+    0 (flat ground, ratio 1) is the middle layer, the layers dense about it (shaders invert
+    this: shaders/_lighting.glsl)."""
+    t = np.linspace(-1.0, 1.0, count)
+    return SLOPE_SPAN * t * np.abs(t)
+
+
+def across_rises(count: int = ACROSS) -> np.ndarray:
+    """The table blocks' rise of the ground across the view, to the viewer's right (per unit of
+    run): 0 is the middle block, the blocks dense about it (shaders/_lighting.glsl inverts
+    this)."""
+    t = np.linspace(-1.0, 1.0, count)
+    return ACROSS_SPAN * t * np.abs(t)
+
+
+def slope_moments(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    to_eye: np.ndarray,
+    theta: np.ndarray,
+    sample: int = 3000,
+    across: np.ndarray | None = None,
+    sheared: bool = True,
+) -> tuple[LightMoments, LightMoments | None]:
+    """What the blades seen from directions `to_eye` ((m, 3)) at elevations θ over the ground
+    ((..., m), radians, several per direction) show of any light, upright and sheared
+    (LightMoments of θ's shape; the second None unless `sheared`). Both weigh each vertex by
+    |n · e| and by the share of a view at θ that reaches its height (Canopy.transmittance): the
+    sheared blade (as the slices are) at its own height y, the upright one at
+    y − g · (its offset from the root along the view) − c · (its offset to the viewer's right),
+    g = tan θ − tan e the ground's rise per unit run away from the eye, c its rise to the right
+    (`across`, θ's shape; 0 if not given), and not at all where that is below the ground."""
+    n = np.asarray(normals, np.float64).reshape(-1, 3)
+    length = np.linalg.norm(n, axis=1)
+    pick = np.flatnonzero(length > 1e-6)
+    pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
+    e = np.asarray(to_eye, np.float64).reshape(-1, 3)
+    e = e / np.linalg.norm(e, axis=1, keepdims=True)
+    shape = np.shape(theta)
+    if len(pick) == 0:
+        none = np.zeros((0, int(np.prod(shape))))
+        nothing = LightMoments.of(np.zeros((0, 3)), none, none).reshaped(shape)
+        return nothing, nothing if sheared else None
+    n = n[pick] / length[pick, None]
+    position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
+    y = position[:, 1:2]  # (k, 1)
+    offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
+    ne = n @ e.T  # (k, m)
+    away = -e[:, [0, 2]]
+    away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
+    right = np.stack([-away[:, 1], away[:, 0]], axis=1)  # (x, z) to the viewer's right
+    elevation = np.arcsin(np.clip(e[:, 1], 0.0, 1.0))
+    # the (k, m) weights in single precision, made by one compiled loop per pass (_seen)
+    # rather than as several (k, m) numpy temporaries
+    along = (offset @ away.T).astype(np.float32)  # each vertex's offset from its root …
+    sideways = (offset @ right.T).astype(np.float32)  # … along the view and to its right
+    height = y[:, 0].astype(np.float32)
+    face = np.abs(ne).astype(np.float32)
+    # the patch's side of the light's sums, once (core/light_moments.py): Σ w |n · e| n^α and
+    # Σ w |n · e| are one product of the weights times |n · e| with these; the signed sum
+    # Σ w |n · e| s n = Σ w (n · e) n = (Σ w n nᵀ) e needs no second (k, m) product
+    basis = np.hstack([powers(n), np.ones((len(n), 1))]).astype(np.float32)  # (k, P + 1)
+    outer = (n[:, :, None] * n[:, None, :]).reshape(-1, 9).astype(np.float32)  # (k, 9)
+    seen = np.empty(face.shape, np.float32)
+    weights = np.empty(face.shape, np.float32)
+
+    def moments(t: np.ndarray, g: np.ndarray, c: np.ndarray, upright: bool) -> LightMoments:
+        """The sums over the vertices seen at elevations t, the ground rising g along the view
+        and c across it: weights w (Canopy.transmittance at the vertex's height over the
+        ground, none below it when upright), times |n · e|."""
+        through = np.exp(-canopy.cumulative(t)).astype(np.float32)  # once per depth, direction
+        _seen(height, along, sideways, face, g, c, through, canopy.dy, canopy.height, upright,
+              seen, weights)  # fmt: skip
+        sums = (seen.T @ basis).astype(np.float64)
+        second = (weights.T @ outer).astype(np.float64).reshape(-1, 3, 3)  # Σ w n nᵀ
+        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, e), sums[:, -1])
+
+    thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
+    rises = np.zeros(thetas.shape) if across is None else np.broadcast_to(across, thetas.shape)
+    level = np.zeros(len(e), np.float32)
+    upright, sheared_parts = [], []
+    for index in np.ndindex(thetas.shape[:-1]):  # a θ for each direction per pass
+        t = thetas[index]
+        g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE).astype(np.float32)
+        g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
+        c = np.clip(rises[index], -MAX_RISE, MAX_RISE).astype(np.float32)
+        upright.append(moments(t, g, c, True))
+        if sheared:
+            sheared_parts.append(moments(t, level, level, False))
+
+    return (
+        LightMoments.stack(upright).reshaped(shape),
+        LightMoments.stack(sheared_parts).reshaped(shape) if sheared else None,
+    )
+
+
+@numba.njit(cache=True)
+def _seen(height, along, sideways, face, g, c, through, dy, top, upright, seen, weights):
+    """Per vertex k and direction m: its height over the ground, y − g_m along − c_m sideways
+    upright (sheared: y), the share of the view that reaches it (`through`: exp(−cumulative)
+    by row, Canopy.row_index's rows, the last above the grass), and that times |n · e|."""
+    rows = through.shape[0] - 1
+    per_row = np.float32(1.0 / dy)
+    top = np.float32(top)
+    for k in range(height.shape[0]):
+        for m in range(g.shape[0]):
+            h = height[k]
+            if upright:
+                h = h - g[m] * along[k, m] - c[m] * sideways[k, m]
+            if upright and h < 0.0:
+                w = np.float32(0.0)
+            elif h >= top:
+                w = through[rows, m]
+            else:  # int() truncates: a height just under the ground (sheared) takes row 0
+                w = through[min(max(int(h * per_row), 0), rows - 1), m]
+            weights[k, m] = w
+            seen[k, m] = w * face[k, m]
+
+
+@dataclass(frozen=True)
+class SlopeMoments:
+    """slope_tables' sums for any light: the upright blades' (blocks, slopes, m) and the
+    sheared ones' (slopes, m), m the table's directions."""
+
+    upright: LightMoments
+    sheared: LightMoments
+    elevations: int
+    azimuths: int
+
+
+def slope_moments_table(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    slopes: int = SLOPES,
+    sample: int = 3000,
+    blocks: int = ACROSS,
+) -> SlopeMoments:
+    """What slope_tables needs of the patch, once for every light (the table's directions,
+    each at the elevations over the ground of slope_offsets, the rises of across_rises)."""
+    e = directions(azimuths, elevations).reshape(-1, 3)
+    theta = np.arcsin(e[:, 1])[None, :] + slope_offsets(slopes)[:, None]  # (slopes, m)
+    rises = across_rises(blocks)
+    middle = blocks // 2  # no rise across the view
+    level, sheared = slope_moments(normals, positions, roots, canopy, e, theta, sample)
+    others = [b for b in range(blocks) if b != middle]
+    shape = (len(others), *theta.shape)
+    tilted, _ = slope_moments(
+        normals, positions, roots, canopy, e, np.broadcast_to(theta, shape), sample,
+        across=np.broadcast_to(rises[others][:, None, None], shape), sheared=False,
+    )  # fmt: skip
+    tilted_parts = iter(
+        LightMoments(tilted.powers[i], tilted.signed[i], tilted.total[i])
+        for i in range(len(others))
+    )
+    parts = [level if b == middle else next(tilted_parts) for b in range(blocks)]
+    assert sheared is not None
+    return SlopeMoments(LightMoments.stack(parts), sheared, elevations, azimuths)
+
+
+def slope_ratios(moments: SlopeMoments, light_dir: np.ndarray, translucency: float) -> np.ndarray:
+    """slope_tables of the patch the moments are of, under this light."""
+    upright = moments.upright.lit(light_dir, translucency)  # (blocks, slopes, m)
+    sheared = moments.sheared.lit(light_dir, translucency)  # (slopes, m)
+    blocks, slopes = upright.shape[:2]
+    flat = upright[blocks // 2, slopes // 2]  # elevation over the ground = the direction's
+    out = np.stack(
+        [
+            np.where(sheared > 0.0, upright / np.maximum(sheared, 1e-6), 1.0),
+            np.where(flat > 0.0, upright / np.maximum(flat, 1e-6), 1.0),
+        ],
+        axis=-1,
+    )
+    out = np.clip(out, *RATIO_LIMITS)
+    return out.reshape(blocks, slopes, moments.elevations, moments.azimuths, 2).astype(np.float32)
+
+
+def slope_tables(
+    normals: np.ndarray,
+    positions: np.ndarray,
+    roots: np.ndarray,
+    canopy: Canopy,
+    light_dir: np.ndarray,
+    translucency: float,
+    azimuths: int = AZIMUTHS,
+    elevations: int = ELEVATIONS,
+    slopes: int = SLOPES,
+    sample: int = 3000,
+    blocks: int = ACROSS,
+) -> np.ndarray:
+    """(blocks, slopes, elevations, azimuths, 2) float32 at the table's directions, each layer
+    at elevation over the ground = the direction's + the layer's offset (slope_offsets), each
+    block with the ground rising across the view by its rise (across_rises):
+    [..., 0] upright blades over sheared ones (the volume's slices, sheared with the ground),
+    [..., 1] upright blades on the slope over upright blades on flat ground seen from the same
+    direction (the image-based grass, lit by the flat ground's facing table); 1 on flat ground."""
+    moments = slope_moments_table(
+        normals, positions, roots, canopy, azimuths, elevations, slopes, sample, blocks
+    )
+    return slope_ratios(moments, light_dir, translucency)
