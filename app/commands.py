@@ -7,6 +7,8 @@ of steps, and only while it is empty)."""
 
 from __future__ import annotations
 
+from time import monotonic
+
 from PySide6.QtGui import QUndoCommand, QUndoStack
 
 from core.brush import Stroke
@@ -18,6 +20,9 @@ from core.params import PatchParams, SliceParams
 from core.wind import Wind
 
 MEMORY_CAP = 512 * 1024 * 1024  # bytes of paint-stroke texels the history keeps
+# Edits of one value that follow each other this closely are one undo step (a slider or dial
+# dragged, a key held); after a pause an edit is a step of its own (two presets picked).
+MERGE_S = 1.0
 
 
 class Command(QUndoCommand):
@@ -61,10 +66,12 @@ class SetValue(Command):
         new,
         merge_id: int = -1,
         index: int | None = None,
+        at: float | None = None,
     ) -> None:
         super().__init__(text)
         self.document, self.name, self.index = document, name, index
         self.old, self.new, self.merge_id = old, new, merge_id
+        self.at = monotonic() if at is None else at  # when its last edit came
 
     def _set(self, value) -> None:
         if self.index is None:
@@ -88,12 +95,21 @@ class SetValue(Command):
             self.index,
         ):
             return False
-        self.new = other.new
+        if other.at - self.at > MERGE_S:
+            return False
+        self.new, self.at = other.new, other.at
         return True
 
     def clone(self) -> SetValue:
         return SetValue(
-            self.text(), self.document, self.name, self.old, self.new, self.merge_id, self.index
+            self.text(),
+            self.document,
+            self.name,
+            self.old,
+            self.new,
+            self.merge_id,
+            self.index,
+            self.at,
         )
 
 

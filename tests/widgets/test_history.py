@@ -45,3 +45,32 @@ def test_strokes_past_the_cap_are_forgotten_and_the_rest_undo_exactly(qapp):
     stack.redo()
     stack.redo()
     assert np.array_equal(maps.stack, states[4])
+
+
+def test_a_drag_is_one_undo_step_and_edits_after_a_pause_are_their_own(qapp):
+    """Light edits in quick succession (a slider dragged) merge; an edit after a pause (a second
+    preset picked) is a step of its own, so one undo takes back only it."""
+    import dataclasses
+
+    from app.commands import MERGE_S, set_light
+    from app.scenes import get_scene
+
+    doc = get_scene("patch-grid").document()
+    stack = QUndoStack()
+    start = doc.light.sun_elevation
+
+    def edit(elevation: float, at: float) -> None:
+        command = set_light(doc, dataclasses.replace(doc.light, sun_elevation=elevation))
+        command.at = at
+        stack.push(command)
+
+    edit(start + 1.0, 100.0)
+    edit(start + 2.0, 100.1)  # the drag goes on
+    edit(start + 3.0, 100.2)
+    assert stack.count() == 1
+    edit(start + 10.0, 100.2 + 2.0 * MERGE_S)  # later: a new step
+    assert stack.count() == 2
+    stack.undo()
+    assert doc.light.sun_elevation == start + 3.0
+    stack.undo()
+    assert doc.light.sun_elevation == start
