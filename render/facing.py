@@ -23,7 +23,7 @@ from render import shared_sums
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 SLOPE_UNIT = 12  # texture unit of the slope-ratio table
-KEPT_TABLES = 8  # slope-table sums kept by the patch and canopy they are of (a build: a second)
+KEPT_TABLES = 8  # sums kept by the patch and canopy they are of (each a build of its own)
 _kept: OrderedDict[str, SlopeMoments] = OrderedDict()
 _kept_facing: OrderedDict[str, LightMoments] = OrderedDict()
 
@@ -51,7 +51,7 @@ def kept_slope_moments(
 ) -> SlopeMoments | None:
     """core/slopes.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
     each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
-    and the full frame's, every test's), a build takes about a second, and every light is a
+    and the full frame's, every test's), a build takes a quarter of a second, and every light is a
     small product of the same sums (core/light_moments.py). Sums another render process of the
     designer built are read from it (render/shared_sums.py), and those built here handed to it.
     None if they are neither kept nor handed over and not `build`."""

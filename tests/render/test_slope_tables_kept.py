@@ -1,5 +1,5 @@
-"""The slope-ratio tables' sums over the blades (core/slopes.py slope_moments_table) take about a
-second to build, and each renderer of a grass type has its own texture of them: render/facing.py
+"""The slope-ratio tables' sums over the blades (core/slopes.py slope_moments_table) take a
+quarter of a second to build, and each renderer of a grass type has its own texture of them: render/facing.py
 keeps the last few by the patch and canopy they are of, and a light change is a small product
 of the same sums. Kept sums must never stand in for another patch or canopy, and the tables of
 another light must differ."""
