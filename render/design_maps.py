@@ -15,11 +15,14 @@ llvmpipe a mipmapped sampler cost the ground pass several times over even at lev
 
 from __future__ import annotations
 
+import hashlib
+
 import moderngl
 import numpy as np
 
 from core.design_maps import LAYER_INDEX, DesignMaps, Rect
 from core.heights import mesh_sink, mesh_size, quad_excess, vertex_sink
+from render import derived_cache
 from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
@@ -91,10 +94,21 @@ class DesignMapTextures:
     def mesh_sink(self) -> tuple[moderngl.Texture, tuple[int, int]]:
         """How far each vertex of the ground mesh sinks to lie under the grass's ground
         (core/heights.py mesh_sink; made at first use, its rows redone when heights change),
-        and the mesh's quads per side."""
+        and the mesh's quads per side. Kept between runs by the heights it is of (render/
+        derived_cache.py)."""
         quads = mesh_size(self.maps.size)
         if self._sink is None:
-            sink, self._excess = mesh_sink(self.maps.stack[HEIGHT, ..., 0], quads)
+            heights = self.maps.stack[HEIGHT, ..., 0]
+            digest = hashlib.blake2b(np.ascontiguousarray(heights).tobytes(), digest_size=16)
+            digest.update(np.asarray(quads, np.int64).tobytes())
+            made = derived_cache.fetch(
+                "sink", digest.hexdigest(), lambda: mesh_sink(heights, quads)
+            )
+            assert made is not None
+            sink, excess = made
+            if excess.shape != (quads[1], quads[0]):  # not this mesh's: made again
+                sink, excess = mesh_sink(heights, quads)
+            self._excess = excess.copy()  # its rows are redone in place after an edit
             self._sink = self.ctx.texture(
                 (quads[0] + 1, quads[1] + 1), 1, sink.tobytes(), dtype="f4"
             )

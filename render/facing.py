@@ -19,7 +19,7 @@ from core.light_moments import LightMoments
 from core.lighting import Lighting
 from core.patch import GrassPatch
 from core.slopes import ACROSS, SLOPES, SlopeMoments, slope_moments_table, slope_ratios
-from render import shared_sums
+from render import derived_cache
 
 FACING_UNIT = 6  # texture unit of the table (render/uniforms.py has the others)
 SLOPE_UNIT = 12  # texture unit of the slope-ratio table
@@ -47,38 +47,52 @@ def _keep(kept: OrderedDict, key: str, value) -> None:
 
 
 def kept_slope_moments(
-    patch: GrassPatch, canopy: Canopy, build: bool = True
+    patch: GrassPatch, canopy: Canopy, build: bool = True, wait: bool = True
 ) -> SlopeMoments | None:
     """core/slopes.py slope_moments_table of this patch and canopy, the last KEPT_TABLES kept:
     each renderer of a grass type has its own SlopeTable (the quality run's two, the draft's
     and the full frame's, every test's), a build takes a quarter of a second, and every light is a
-    small product of the same sums (core/light_moments.py). Sums another render process of the
-    designer built are read from it (render/shared_sums.py), and those built here handed to it.
-    None if they are neither kept nor handed over and not `build`."""
+    small product of the same sums (core/light_moments.py). Sums built before, here, by the
+    designer's other render process or in an earlier run, are read from the folder kept for
+    them (render/derived_cache.py). None if they are not there and not `build`, or another
+    process is building them and not `wait`."""
     key = _digest(patch, canopy)
     moments = _kept.get(key)
     if moments is None:
-        moments = shared_sums.load(key)
-        if moments is None and not build:
-            return None
+        if build:
+
+            def made() -> SlopeMoments:
+                v = patch.vertices
+                return slope_moments_table(v["normal"], v["position"], v["root"], canopy)
+
+            moments = derived_cache.fetch("slope", key, made, wait)
+        else:
+            moments = derived_cache.load("slope", key)
         if moments is None:
-            v = patch.vertices
-            moments = slope_moments_table(v["normal"], v["position"], v["root"], canopy)
-            shared_sums.save(key, moments)
+            return None
     _keep(_kept, key, moments)
     return moments
 
 
-def kept_facing_moments(patch: GrassPatch, canopy: Canopy | None) -> LightMoments:
+def kept_facing_moments(
+    patch: GrassPatch, canopy: Canopy | None, wait: bool = True
+) -> LightMoments | None:
     """core/facing.py facing_moments of this patch (each vertex seen through `canopy` where
-    given), the last KEPT_TABLES kept by content: an undo or redo of a blade edit brings back
-    a patch whose sums were built before."""
+    given), the last KEPT_TABLES kept by content (an undo or redo of a blade edit brings back
+    a patch whose sums were built before), and handed between processes and runs as the slope
+    sums are (render/derived_cache.py). None while another process builds them and not `wait`."""
     key = _digest(patch, canopy)
     moments = _kept_facing.get(key)
     if moments is None:
-        v = patch.vertices
-        seen = None if canopy is None else (v["position"][:, 1], canopy)
-        moments = facing_moments(v["normal"], seen=seen)
+
+        def made() -> LightMoments:
+            v = patch.vertices
+            seen = None if canopy is None else (v["position"][:, 1], canopy)
+            return facing_moments(v["normal"], seen=seen)
+
+        moments = derived_cache.fetch("facing", key, made, wait)
+        if moments is None:
+            return None
     _keep(_kept_facing, key, moments)
     return moments
 
@@ -106,11 +120,12 @@ class FacingTable:
         # of, the table at rest, the bent tables (None until the wind asks for them)
         self._moments: tuple | None = None
 
-    def moments(self, bend: bool, draft: bool = False) -> tuple | None:
+    def moments(self, bend: bool, draft: bool = False, wait: bool = True) -> tuple | None:
         """(patch, canopy, the sums at rest, the bent sums or None): the sums of the patch and
         canopy they name, built when those change, or the bent ones when first needed; a light
         change uses them as they are. In a draft the sums held stand in for a new patch's until
-        the full frame (a blade edit's draft does not wait for them)."""
+        the full frame (a blade edit's draft does not wait for them). Not `wait`: the sums held
+        (None if none) while another process builds the new ones."""
         patch = self._patch()
         if patch is None:
             return None
@@ -118,7 +133,10 @@ class FacingTable:
         held = self._moments
         stale = held is None or held[0] is not patch or held[1] is not canopy
         if held is None or (stale and not draft):
-            held = self._moments = (patch, canopy, kept_facing_moments(patch, canopy), None)
+            sums = kept_facing_moments(patch, canopy, wait)
+            if sums is None:
+                return held
+            held = self._moments = (patch, canopy, sums, None)
         if bend and held[3] is None and (held[0] is patch or not draft):
             held = self._moments = (*held[:3], bend_moments(held[0].vertices, held[1]))
         return held
@@ -130,9 +148,10 @@ class FacingTable:
         canopy = self._canopy() if self._canopy is not None else None
         return held is not None and (held[0] is not self._patch() or held[1] is not canopy)
 
-    def refresh(self) -> None:
-        """Build the sums of the patch and canopy as they are now (the bent ones if held)."""
-        self.moments(self._moments is not None and self._moments[3] is not None)
+    def refresh(self, wait: bool = True) -> None:
+        """Build or find the sums of the patch and canopy as they are now (the bent ones if
+        held); not `wait`: unless another process is building them (stale says so after)."""
+        self.moments(self._moments is not None and self._moments[3] is not None, wait=wait)
 
     @staticmethod
     def _rows(held: tuple, lighting: Lighting, bend: bool) -> np.ndarray:
@@ -197,43 +216,56 @@ class SlopeTable:
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = True  # azimuth wraps
         self.texture.repeat_y = False  # z repeats: a block is read between its end texels' centres
-        ones = np.ones((ACROSS, SLOPES, ELEVATIONS, AZIMUTHS, 2), np.float32)
-        self.texture.write(ones.tobytes())
+        self._ones = np.ones((ACROSS, SLOPES, ELEVATIONS, AZIMUTHS, 2), np.float32)
+        self.texture.write(self._ones.tobytes())
         self._used: tuple | None = None  # the sums and light the texture is of
         self._sums: tuple | None = None  # (patch, canopy, their kept sums)
+        self._lacking = False  # a draft drew with ones for want of sums
 
     def stale(self) -> bool:
-        """Whether a draft left sums of another patch or canopy held (FacingTable.stale)."""
+        """Whether a draft left sums of another patch or canopy held (FacingTable.stale), or
+        drew with none (the tables' ones) for want of them."""
         held, patch, canopy = self._sums, self._patch(), self._canopy()
-        if held is None or patch is None or canopy is None:
+        if patch is None or canopy is None:
             return False
+        if held is None:
+            return self._lacking
         return held[0] is not patch or held[1] is not canopy
 
-    def refresh(self) -> None:
-        """Build or find the sums of the patch and canopy as they are now."""
+    def refresh(self, wait: bool = True) -> None:
+        """Build or find the sums of the patch and canopy as they are now; not `wait`: unless
+        another process is building them (stale says so after)."""
         patch, canopy = self._patch(), self._canopy()
         if patch is not None and canopy is not None:
-            sums = kept_slope_moments(patch, canopy)
-            assert sums is not None
-            self._sums = (patch, canopy, sums)
+            sums = kept_slope_moments(patch, canopy, wait=wait)
+            if sums is not None:
+                self._sums = (patch, canopy, sums)
+                self._lacking = False
 
     def use(self, lighting: Lighting, unit: int = SLOPE_UNIT, draft: bool = False) -> None:
         """Bind the tables of the grass type's patch, canopy and this light; `draft`: the sums
-        held may stand in for a new patch's that are not built yet (as FacingTable.moments)."""
+        held stand in for a new patch's that are not built yet (as FacingTable.moments), and
+        with none held the tables are ones (no slope's change of light) until they are."""
         patch, canopy = self._patch(), self._canopy()
         if patch is not None and canopy is not None:
             held = self._sums
             if held is None or held[0] is not patch or held[1] is not canopy:
-                sums = kept_slope_moments(patch, canopy, build=not draft or held is None)
+                sums = kept_slope_moments(patch, canopy, build=not draft)
                 if sums is not None:
                     held = self._sums = (patch, canopy, sums)
-            assert held is not None
-            light = (*lighting.sun_direction, lighting.translucency)
-            old = self._used
-            if old is None or old[0] is not held[2] or old[1] != light:
-                table = slope_ratios(held[2], lighting.sun_direction, lighting.translucency)
-                self.texture.write(np.ascontiguousarray(table).tobytes())
-                self._used = (held[2], light)
+                    self._lacking = False
+            if held is None:
+                self._lacking = True
+                if self._used is not None:
+                    self.texture.write(self._ones.tobytes())
+                    self._used = None
+            else:
+                light = (*lighting.sun_direction, lighting.translucency)
+                old = self._used
+                if old is None or old[0] is not held[2] or old[1] != light:
+                    table = slope_ratios(held[2], lighting.sun_direction, lighting.translucency)
+                    self.texture.write(np.ascontiguousarray(table).tobytes())
+                    self._used = (held[2], light)
         self.texture.use(unit)
 
     def release(self) -> None:

@@ -143,12 +143,13 @@ class FramePipeline:
         self._convert()
 
     def stale_light_sums(self) -> bool:
-        """Whether a draft drew a grass type with the light sums of its patch before an edit."""
+        """Whether a draft drew a grass type with the light sums of its patch before an edit,
+        or with none."""
         return any(grass.stale_light_sums() for grass in self.grass_types)
 
-    def refresh_light_sums(self) -> None:
+    def refresh_light_sums(self, wait: bool = True) -> None:
         for grass in self.grass_types:
-            grass.refresh_light_sums()
+            grass.refresh_light_sums(wait)
 
     def missing(self) -> list[tuple[int, int]]:
         """(grass type, slice count) pairs the current mode needs and nobody converted yet."""

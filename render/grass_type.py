@@ -64,13 +64,15 @@ class GrassTypeRenderer:
         self._set_channel(self.image)
 
     def stale_light_sums(self) -> bool:
-        """Whether a draft drew with the light sums of the patch before an edit."""
+        """Whether a draft drew with the light sums of the patch before an edit (or none)."""
         return any(t.stale() for t in (self.facing, self.image.facing, self.slope) if t)
 
-    def refresh_light_sums(self) -> None:
+    def refresh_light_sums(self, wait: bool = True) -> None:
+        """Build or find the light sums of the patch now; not `wait`: those another process is
+        building stay stale until it has."""
         for table in (self.facing, self.image.facing, self.slope):
             if table is not None:
-                table.refresh()
+                table.refresh(wait)
 
     def _set_channel(self, renderer) -> None:
         renderer.density_channel = self.density_channel

@@ -26,9 +26,10 @@ from core.design_maps import LAYER_INDEX, LAYERS
 from core.document import Document
 from core.project_file import document_data
 from core.stats import FrameStats
+from render import derived_cache
+from render.derived_cache import SHARED_DIR_ENV
 from render.design_maps import union
 from render.render_server import DRAFT, FULL, MappedArray
-from render.shared_sums import SHARED_DIR_ENV
 
 ROLES = (DRAFT, FULL)
 
@@ -106,9 +107,11 @@ class RenderClient:
         self._handlers: dict = {}
         self._changed: Callable[[], None] = lambda: None
         self._closed = False
-        # the folder the two processes hand each other the slope tables' sums in
-        # (render/shared_sums.py), for this window's session
-        self._shared = tempfile.mkdtemp(prefix="sward-sums-")
+        # the folder the two processes hand each other the light tables' sums in (render/
+        # derived_cache.py): the cache kept between runs, or one for this window's session
+        kept = derived_cache.folder()
+        self._session_folder = None if kept is not None else tempfile.mkdtemp(prefix="sward-sums-")
+        self._shared = str(kept) if kept is not None else self._session_folder
         self.processes: dict[str, _Process] = {role: self._start(role) for role in ROLES}
 
     # -- processes ---------------------------------------------------------------------------
@@ -340,4 +343,5 @@ class RenderClient:
             with contextlib.suppress(OSError):
                 p.conn.close()
             p.release_files()
-        shutil.rmtree(self._shared, ignore_errors=True)
+        if self._session_folder is not None:
+            shutil.rmtree(self._session_folder, ignore_errors=True)

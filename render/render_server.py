@@ -42,6 +42,7 @@ FULL_NICE = 10
 # first one after start) waited for both.
 REFINE_IDLE_S = 1.0
 REFINE_WAIT_S = 3.0  # but no longer than this after the draft that lacked them (the wind asks on)
+RETRY_S = 0.1  # how often the draft process looks for sums the full process is building
 
 
 class MappedArray:
@@ -79,6 +80,7 @@ class RenderServer:
         self.refine = False  # a draft that lacked slices: convert, then draw it again
         self._asked_at = 0.0  # monotonic() when the window last asked for a frame
         self._lacked_at = 0.0  # monotonic() when a draft first lacked what refine_one makes
+        self._retry_at = 0.0  # monotonic() before which refine_one waits for the other process
         self._targets: dict[tuple[int, int], object] = {}
 
     # -- messages ----------------------------------------------------------------------------
@@ -260,14 +262,20 @@ class RenderServer:
         self.waiting_ack = True
         self.conn.send(("frame", request["version"], request["kind"], (w, h), stats, extra))
 
-    def refine_one(self) -> None:
+    def refine_one(self) -> bool:
         """The draft process makes what a draft lacked one piece at a time: the slices, then
-        the light sums of a patch it drew with those of the patch before an edit."""
+        the light sums of a patch it drew with those of the patch before an edit (or with
+        none). Sums the full process is building are not built twice: they are read once it
+        has written them (render/derived_cache.py). Whether anything was made."""
         p = self.pipeline
         if not p.missing():
-            p.refresh_light_sums()
-            self.refine = False
-            return
+            p.refresh_light_sums(wait=False)
+            self.refine = p.stale_light_sums()
+            if self.refine:  # the other process builds them: look again a little later
+                self._retry_at = time.monotonic() + RETRY_S
+                return False
+            self.conn.send(("status", ""))
+            return True
         grass_type, n = p.missing()[0]
         patch = p.grass_types[grass_type].patch
         sp = p.slice_params
@@ -279,6 +287,7 @@ class RenderServer:
         if not p.missing() and not p.stale_light_sums():
             self.refine = False
             self.conn.send(("status", ""))
+        return True
 
     def loop(self) -> None:
         while True:
@@ -301,13 +310,16 @@ class RenderServer:
                     self.request = request  # frame after frame, the same state
             elif self.refine:
                 now = time.monotonic()
-                wait = min(
-                    REFINE_IDLE_S - (now - self._asked_at), REFINE_WAIT_S - (now - self._lacked_at)
+                wait = max(
+                    min(
+                        REFINE_IDLE_S - (now - self._asked_at),
+                        REFINE_WAIT_S - (now - self._lacked_at),
+                    ),
+                    self._retry_at - now,
                 )
                 if wait > 0.0 and self.conn.poll(wait):
                     continue  # a message first (a new frame asked for waits for no refinement)
-                self.refine_one()
-                if self.last is not None and self.request is None:
+                if self.refine_one() and self.last is not None and self.request is None:
                     self.request = self.last
 
 

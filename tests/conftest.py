@@ -9,8 +9,14 @@ Tests marked `gui` (real windows under Xvfb) run in a process of their own, as `
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
+
+# the light sums kept between runs (render/derived_cache.py) stay out of tests: each test builds
+# what it checks; tests of the cache name a folder of their own
+os.environ.setdefault("SWARD_CACHE", "off")
 
 
 @pytest.fixture(scope="session")

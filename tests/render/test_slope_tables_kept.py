@@ -55,8 +55,8 @@ def test_sums_are_built_once_for_a_patch_and_canopy_and_every_light_uses_them():
 
 def test_the_designers_render_processes_hand_each_other_the_sums(tmp_path, monkeypatch):
     """What one render process built, the other reads from the folder they share (render/
-    shared_sums.py) rather than building it again; without that folder nothing is written."""
-    from render import facing, shared_sums
+    derived_cache.py) rather than building it again; without that folder nothing is written."""
+    from render import derived_cache, facing
 
     patch = generate_patch(PatchParams(blade_count=200, seed=3))
     canopy = _canopy(0.4)
@@ -65,7 +65,7 @@ def test_the_designers_render_processes_hand_each_other_the_sums(tmp_path, monke
     built = kept_slope_tables(patch, canopy, light)
     assert not list(tmp_path.iterdir())  # no folder named: nothing shared
 
-    monkeypatch.setenv(shared_sums.SHARED_DIR_ENV, str(tmp_path))
+    monkeypatch.setenv(derived_cache.SHARED_DIR_ENV, str(tmp_path))
     monkeypatch.setattr(facing, "_kept", facing.OrderedDict())
     kept_slope_tables(patch, canopy, light)  # built, and handed over
     assert len(list(tmp_path.glob("slope-*.npz"))) == 1
