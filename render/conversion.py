@@ -193,6 +193,7 @@ class PatchConverter:
             else:  # look along -z from beyond the slab: screen right = +x
                 view = look_at((0, 0, hi + 2.0), (0, 0, hi))
             proj = orthographic(0.0, 1.0, 0.0, height, 0.1, 10.0)
+            self._target((w, h * n))[0].use()  # again: a frame may have been drawn between
             self._draw(proj @ view, (0, i * h, w, h), plane_lo, plane_hi, plan[i])
             yield done + i + 1, total
         color, normal, threshold, height = self._read((w, h * n))

@@ -81,6 +81,7 @@ class RenderServer:
         self._asked_at = 0.0  # monotonic() when the window last asked for a frame
         self._lacked_at = 0.0  # monotonic() when a draft first lacked what refine_one makes
         self._retry_at = 0.0  # monotonic() before which refine_one waits for the other process
+        self._converting: tuple | None = None  # (what, its conversion's steps) under way
         self._targets: dict[tuple[int, int], object] = {}
 
     # -- messages ----------------------------------------------------------------------------
@@ -263,10 +264,11 @@ class RenderServer:
         self.conn.send(("frame", request["version"], request["kind"], (w, h), stats, extra))
 
     def refine_one(self) -> bool:
-        """The draft process makes what a draft lacked one piece at a time: the slices, then
-        the light sums of a patch it drew with those of the patch before an edit (or with
-        none). Sums the full process is building are not built twice: they are read once it
-        has written them (render/derived_cache.py). Whether anything was made."""
+        """The draft process makes what a draft lacked one piece at a time: the slices (a
+        capture a call), then the light sums of a patch it drew with those of the patch before
+        an edit (or with none). Sums the full process is building are not built twice: they
+        are read once it has written them (render/derived_cache.py). Whether a draft would
+        now show more."""
         p = self.pipeline
         if not p.missing():
             p.refresh_light_sums(wait=False)
@@ -279,8 +281,17 @@ class RenderServer:
         grass_type, n = p.missing()[0]
         patch = p.grass_types[grass_type].patch
         sp = p.slice_params
-        self.conn.send(("status", f"converting slices of grass type {grass_type + 1}"))
-        sliced = p.converter.convert(patch, n, (sp.width, sp.height), sp.top)
+        what = (grass_type, n, patch, sp)
+        if self._converting is None or self._converting[0] != what:
+            self.conn.send(("status", f"converting slices of grass type {grass_type + 1}"))
+            steps = p.converter.steps(patch, n, (sp.width, sp.height), sp.top)
+            self._converting = (what, steps)
+        try:  # one capture at a time: input that comes meanwhile waits for one, not for all
+            next(self._converting[1])
+            return False
+        except StopIteration as done:
+            sliced = done.value
+        self._converting = None
         p.set_slice_textures(
             SliceTextures.upload(self.ctx, sliced), patch, sp.replace(slices=n), grass_type
         )

@@ -94,6 +94,30 @@ def test_conversion_steps_report_progress_and_give_the_same_slices(converter, ct
     assert np.array_equal(sliced.top.threshold, whole.top.threshold)
 
 
+def test_frames_drawn_between_the_steps_leave_the_slices_as_they_are(converter, headless):
+    """The draft process converts a capture at a time and draws the drafts asked for
+    meanwhile (render/render_server.py refine_one): those frames bind their own targets and
+    state, and the slices must come out as from one conversion."""
+    from app.scenes import get_scene
+
+    document = get_scene("patch-grid").document()
+    camera = document.camera()
+    renderer = headless(document)
+    patch = generate_patch(PARAMS)
+    steps = converter.steps(patch, 3, SIZE, top_size=32)
+    while True:
+        renderer.render(camera, (64, 48), preview=True)  # a draft between two captures
+        try:
+            next(steps)
+        except StopIteration as done:
+            sliced = done.value
+            break
+    whole = converter.convert(patch, 3, SIZE, top_size=32)
+    for interrupted, plain in ((sliced.x, whole.x), (sliced.z, whole.z), (sliced.top, whole.top)):
+        assert np.array_equal(interrupted.color, plain.color)
+        assert np.array_equal(interrupted.threshold, plain.threshold)
+
+
 def test_the_top_view_covers_what_the_blades_cover_at_any_size(converter):
     """The blade's mask is read at its base level: a leaning blade seen from above is
     foreshortened along its length, and read through the mip chain its mask blurred, so the
