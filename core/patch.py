@@ -151,6 +151,25 @@ def _strip_indices(blades: int, subdivisions: int) -> np.ndarray:
     return (base + quad[None, :]).astype(np.uint32).reshape(-1)
 
 
+def draft_rows(subdivisions: int) -> np.ndarray:
+    """The rows of a blade's strip a draft keeps: every other one from the root, and the tip
+    (a draft is drawn at a quarter of the width and height, where a blade's segments are a
+    quarter as long on screen: per-blade segment LOD, Horlebein)."""
+    rows = list(range(0, subdivisions + 1, 2))
+    if rows[-1] != subdivisions:
+        rows.append(subdivisions)
+    return np.array(rows)
+
+
+def draft_indices(blades: int, subdivisions: int) -> np.ndarray:
+    """_strip_indices over draft_rows alone: the same vertices, about half the triangles."""
+    rows = draft_rows(subdivisions) * 2
+    lo, hi = rows[:-1], rows[1:]
+    quad = np.stack([lo, lo + 1, hi, hi, lo + 1, hi + 1], axis=1).reshape(-1)
+    base = (np.arange(blades) * (subdivisions + 1) * 2)[:, None]
+    return (base + quad[None, :]).astype(np.uint32).reshape(-1)
+
+
 def blade_fill(v) -> np.ndarray:
     """The share of a blade's width its texture's mask keeps at v (0 at the root, 1 at the
     tip): the blade narrows to a pointed tip (blade_texture)."""

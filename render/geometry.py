@@ -7,8 +7,9 @@ cell of the representation is drawn in ONE instanced call.
 from __future__ import annotations
 
 import moderngl
+import numpy as np
 
-from core.patch import GrassPatch, blade_texture
+from core.patch import GrassPatch, blade_texture, draft_indices
 from render.buffers import InstancedRenderer, instance_layout, layout, upload
 from render.shaders import load_program
 from render.uniforms import FrameUniforms
@@ -48,13 +49,22 @@ class GeometryRenderer(InstancedRenderer):
         self.instance_count = 0
         self.patch: GrassPatch | None = None
         self.density = 1.0
+        self._counts = (0, 0)  # the index buffer's full triangles, then a draft's
+        self._draft = False  # this frame's a draft: blades of fewer segments
 
     # -- resources ---------------------------------------------------------------------------
     def set_patch(self, patch: GrassPatch) -> None:
-        """Upload a new patch; buffers are reused when the size fits."""
+        """Upload a new patch; buffers are reused when the size fits. The index buffer holds
+        the patch's triangles and after them a draft's (core/patch.py draft_indices)."""
         self.patch = patch
+        blades, s = len(patch.roots), patch.params.subdivisions
+        if len(patch.indices) == blades * s * 6:  # generate_patch's strips
+            coarse = draft_indices(blades, s)
+        else:  # a selection of them (render/conversion.py): drafts draw them all
+            coarse = patch.indices
+        self._counts = (len(patch.indices), len(coarse))
         vbo = upload(self.ctx, self.vbo, patch.vertices)
-        ibo = upload(self.ctx, self.ibo, patch.indices)
+        ibo = upload(self.ctx, self.ibo, np.concatenate([patch.indices, coarse]))
         if vbo is not self.vbo or ibo is not self.ibo:
             self.vbo, self.ibo = vbo, ibo
             self._rebuild_vao()
@@ -85,10 +95,17 @@ class GeometryRenderer(InstancedRenderer):
         self.blade_texture.use(0)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.disable(moderngl.CULL_FACE)
+        self._draft = frame.draft
 
     def draw(self) -> None:
         if self.vao is not None and self.instance_count > 0:
-            self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
+            full, coarse = self._counts
+            if self._draft:
+                self.vao.render(
+                    moderngl.TRIANGLES, vertices=coarse, first=full, instances=self.instance_count
+                )
+            else:
+                self.vao.render(moderngl.TRIANGLES, vertices=full, instances=self.instance_count)
 
     def finalize(self) -> None:
         """Nothing to undo: the shader sets the samples its fragments cover."""

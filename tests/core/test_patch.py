@@ -1,9 +1,10 @@
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from core.params import PRESETS, PatchParams
-from core.patch import blade_texture, generate_patch
+from core.patch import blade_texture, draft_indices, draft_rows, generate_patch
 
 SMALL = PatchParams(blade_count=300)
 
@@ -82,3 +83,23 @@ def test_blade_texture_has_a_pointed_tip():
     alpha = tex[..., 3].astype(float) / 255
     assert alpha[10].mean() > 0.8  # near the root: full width
     assert alpha[-3].mean() < 0.3  # near the tip: narrow
+
+
+@pytest.mark.parametrize("subdivisions", [1, 2, 3, 4, 5, 8])
+def test_a_drafts_blades_keep_every_other_row_root_and_tip(subdivisions):
+    """Drafts draw each blade through every other row of its strip (render/geometry.py): the
+    same vertices, the root and the tip kept, the strip still closed, about half the
+    triangles."""
+    params = PatchParams(blade_count=7, subdivisions=subdivisions)
+    patch = generate_patch(params)
+    coarse = draft_indices(7, subdivisions).reshape(7, -1)
+    per_blade = (subdivisions + 1) * 2
+    rows = draft_rows(subdivisions)
+    assert rows[0] == 0 and rows[-1] == subdivisions
+    assert coarse.shape[1] == 6 * (len(rows) - 1)
+    assert len(rows) - 1 == (subdivisions + 1) // 2  # segments: about half
+    for blade, indices in enumerate(coarse):
+        local = indices.astype(np.int64) - blade * per_blade
+        assert set(local // 2) == set(rows)  # whole rows, both sides, of this blade only
+    if subdivisions == 1:
+        assert np.array_equal(coarse.reshape(-1), patch.indices)

@@ -1,6 +1,7 @@
 """A draft after a blade edit does not wait for the new patch's light sums (render/facing.py):
 the sums held stand in until the full frame, which builds them and draws what a renderer that
-never saw the old patch draws."""
+never saw the old patch draws. A draft's blades have fewer segments and look the same at its
+size."""
 
 import numpy as np
 
@@ -50,3 +51,27 @@ def test_the_draft_process_refreshes_the_sums_a_draft_lacked(headless):
     refined, _ = renderer.render(camera, SIZE, preview=True)
     fresh, _ = headless(doc).render(camera, SIZE, preview=True)
     assert np.abs(refined.astype(int) - fresh.astype(int)).max() <= 2
+
+
+def test_a_draft_draws_blades_of_fewer_segments_that_look_the_same(headless):
+    """A draft (a quarter of the width and height) draws each blade through every other row
+    of its strip (core/patch.py draft_rows): fewer triangles, the same picture at that size."""
+    from render import context
+
+    doc = get_scene("meadow").document()
+    camera = doc.camera()
+    renderer = headless(doc)
+    pipeline = renderer.pipeline
+    size = (200, 150)
+    out = renderer._target(size)
+    pipeline.render(camera, out, size, draft=False)  # slices and sums made
+    drawn = {}
+    for draft in (False, True):
+        pipeline.render(camera, out, size, draft=draft)
+        drawn[draft] = context.read_rgb(out, size, 3).astype(np.int32)
+    geometry = pipeline.grass_types[0].geometry
+    full, coarse = geometry._counts
+    assert coarse < 0.7 * full
+    difference = np.abs(drawn[True] - drawn[False])
+    assert difference.max() > 0  # the draft drew its own triangles
+    assert difference.mean() < 1.5  # on 0 … 255: the same picture at a draft's size
