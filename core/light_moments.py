@@ -40,7 +40,12 @@ def powers(normals: np.ndarray) -> np.ndarray:
     """(k, P) the monomials of degree LIGHT_DEGREE of unit normals (k, 3)."""
     n = np.asarray(normals, np.float64)
     e = _exponents()
-    table = n[:, None, :] ** np.arange(LIGHT_DEGREE + 1)[None, :, None]  # (k, d + 1, 3)
+    # n^0 … n^d per component by repeated products (a float power per entry cost 2 ms a
+    # thousand normals, the products a tenth of that)
+    table = np.empty((len(n), LIGHT_DEGREE + 1, 3))  # (k, d + 1, 3)
+    table[:, 0] = 1.0
+    for j in range(1, LIGHT_DEGREE + 1):
+        np.multiply(table[:, j - 1], n, out=table[:, j])
     return table[:, e[:, 0], 0] * table[:, e[:, 1], 1] * table[:, e[:, 2], 2]
 
 
