@@ -9,8 +9,6 @@ import os
 import sys
 from pathlib import Path
 
-from app.scenes import DEFAULT_SCENE, SCENES, get_scene
-
 
 class CliError(Exception):
     """Bad input from the command line: printed as one line, exit status 2."""
@@ -158,6 +156,8 @@ def _writable(path: Path) -> Path:
 
 
 def parser() -> argparse.ArgumentParser:
+    from app.scenes import DEFAULT_SCENE
+
     p = argparse.ArgumentParser(prog="sward", description="Design real-time grass.")
     sub = p.add_subparsers(dest="command")
 
@@ -301,6 +301,8 @@ def _document(args: argparse.Namespace):
         except ProjectError as exc:
             raise CliError(str(exc)) from None
     else:
+        from app.scenes import get_scene
+
         try:
             document = get_scene(args.scene).document()
         except KeyError as exc:
@@ -349,6 +351,8 @@ def cmd_new(args: argparse.Namespace) -> int:
     if args.cells is None:
         document = _document(args)
     else:
+        from app.scenes import get_scene
+
         try:
             document = get_scene(args.scene).resized(*args.cells).document()
         except KeyError as exc:
@@ -649,6 +653,8 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def cmd_scenes(_: argparse.Namespace) -> int:
+    from app.scenes import SCENES
+
     for scene in SCENES.values():
         print(f"{scene.name:12s} {scene.description}")
         print(f"{'':12s} cameras: {', '.join(scene.cameras)} (default {scene.default_camera})")
@@ -678,10 +684,27 @@ def _program() -> str:
     return argv0 if "/" in argv0 and Path(argv0).name == "sward" else "sward"
 
 
-def cmd_gui(_: argparse.Namespace) -> int:
-    if sys.platform.startswith("linux") and not (
+def _has_display() -> bool:
+    return not sys.platform.startswith("linux") or bool(
         os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
-    ):
+    )
+
+
+def start_render_processes() -> None:
+    """Start the designer's two render processes now, before the window's modules load: each
+    imports its own and makes its GL context meanwhile (render/process_start.py). Only with
+    the folder they share kept (render/derived_cache.py), where the window will find it."""
+    from render import derived_cache, process_start
+
+    folder = derived_cache.folder()
+    if folder is not None and _has_display():
+        process_start.start_early(process_start.ROLES, str(folder), derived_cache.SHARED_DIR_ENV)
+
+
+def cmd_gui(_: argparse.Namespace) -> int:
+    from app.scenes import DEFAULT_SCENE
+
+    if not _has_display():
         print(
             "sward: no display found (DISPLAY is not set), so the designer cannot open.\n"
             "Render headless instead, e.g.:\n"
@@ -713,7 +736,10 @@ def _glue_points(argv: list[str]) -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(_glue_points(sys.argv[1:] if argv is None else argv))
+    words = sys.argv[1:] if argv is None else argv
+    if not words:  # the designer: its render processes start first
+        start_render_processes()
+    args = parser().parse_args(_glue_points(words))
     handler = {
         None: cmd_gui,
         "render": cmd_render,

@@ -8,6 +8,12 @@ $SWARD_LATENCY_OUT."""
 
 from __future__ import annotations
 
+from app.cli import start_render_processes
+
+# as `sward` does, the render processes start before the window's modules load
+if __name__ == "__main__":
+    start_render_processes()
+
 import json
 import os
 import subprocess

@@ -11,9 +11,7 @@ import contextlib
 import json
 import os
 import shutil
-import socket
 import subprocess
-import sys
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -26,12 +24,11 @@ from core.design_maps import LAYER_INDEX, LAYERS
 from core.document import Document
 from core.project_file import document_data
 from core.stats import FrameStats
-from render import derived_cache
+from render import derived_cache, process_start
 from render.derived_cache import SHARED_DIR_ENV
 from render.design_maps import union
-from render.render_server import DRAFT, FULL, MappedArray
-
-ROLES = (DRAFT, FULL)
+from render.process_start import FULL, ROLES
+from render.render_server import MappedArray
 
 
 def _shared_folder() -> str:
@@ -116,15 +113,10 @@ class RenderClient:
 
     # -- processes ---------------------------------------------------------------------------
     def _start(self, role: str) -> _Process:
-        """A new process running render/render_server.py, talking over a socket pair (a
-        module run with -m: nothing of the window's program is imported again there)."""
-        mine, theirs = socket.socketpair()
-        process = subprocess.Popen(
-            [sys.executable, "-m", "render.render_server", role, str(theirs.fileno())],
-            pass_fds=(theirs.fileno(),),
-            env={**os.environ, SHARED_DIR_ENV: self._shared},
-        )
-        theirs.close()
+        """The process of `role` started early for this window (render/process_start.py), or
+        a new one."""
+        early = process_start.take(role, self._shared)
+        process, mine = early or process_start.spawn(role, self._shared, SHARED_DIR_ENV)
         return _Process(role, process, Connection(mine.detach()))
 
     def connections(self) -> dict[str, object]:

@@ -31,9 +31,9 @@ from core.view_mode import ViewMode
 from render import context
 from render.binding import DocumentBinding
 from render.frame import FrameAborted, FramePipeline
+from render.process_start import DRAFT, FULL
 from render.slices import SliceTextures
 
-DRAFT, FULL = "draft", "full"
 DRAFT_SCALE = 4  # drafts are drawn at 1 / 4 of the width and height
 FULL_NICE = 10
 # The draft process makes what a draft lacked (slices, light sums) once the window has asked
