@@ -221,7 +221,10 @@ class RenderServer:
         draft = self.role == DRAFT and request["kind"] == "view"
         if draft:
             w, h = max(1, w // DRAFT_SCALE), max(1, h // DRAFT_SCALE)
-        abort = self.conn.poll if self.role == FULL and request["kind"] == "view" else None
+        # a full frame, or a draft drawn again to show what refine_one made, gives way to any
+        # message between its passes: input waits for no frame it would make stale
+        stoppable = self.role == FULL or request.get("again", False)
+        abort = self.conn.poll if stoppable and request["kind"] == "view" else None
         fbo = self._target((w, h))
         try:
             # a draft is timed only as a whole: no ctx.finish() bubbles between its passes
@@ -229,6 +232,8 @@ class RenderServer:
                 request["camera"], fbo, (w, h), not draft, False, abort, draft=draft
             )
         except FrameAborted:
+            if request.get("again", False) and self.request is None:
+                self.request = request  # after the message, unless a newer frame is asked for
             return
         stats.preview = draft
         stats.state_time = request["state_time"]
@@ -331,7 +336,7 @@ class RenderServer:
                 if wait > 0.0 and self.conn.poll(wait):
                     continue  # a message first (a new frame asked for waits for no refinement)
                 if self.refine_one() and self.last is not None and self.request is None:
-                    self.request = self.last
+                    self.request = {**self.last, "again": True}
 
 
 def serve(conn, role: str) -> None:
