@@ -93,3 +93,20 @@ def test_shared_files_lose_their_names_once_mapped(window, qtbot):
     ]
     assert len(paths) == 4  # a frame file and a stack copy per process
     qtbot.waitUntil(lambda: not any(os.path.exists(path) for path in paths), timeout=10000)
+
+
+@pytest.mark.skipif(not hasattr(os, "SCHED_IDLE"), reason="Linux's idle scheduling")
+def test_after_its_first_frame_the_full_process_yields_the_cores_to_drafts(window, qtbot):
+    """Drafts answer input; a full frame drawn meanwhile, made stale by that input, must not
+    take the cores they draw with (render/render_server.py _yield_to_others). Before its first
+    frame the full process keeps nice 10, so the start is not held back."""
+    vp = window.viewport
+    wait_full(window)
+    full = vp.renderer.pids["full"]
+
+    def policies(pid: int) -> set[int]:
+        return {os.sched_getscheduler(int(t)) for t in os.listdir(f"/proc/{pid}/task")}
+
+    assert len(os.listdir(f"/proc/{full}/task")) > 1  # llvmpipe's threads among them
+    qtbot.waitUntil(lambda: policies(full) == {os.SCHED_IDLE}, timeout=5000)
+    assert os.SCHED_IDLE not in policies(vp.renderer.pids["draft"])
