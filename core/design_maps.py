@@ -40,6 +40,15 @@ MAX_SIZE = 8192
 Rect = tuple[int, int, int, int]  # x (column), y (row), width, height
 
 
+def union(a: Rect | None, b: Rect) -> Rect:
+    """The smallest rectangle holding both (x, y, width, height)."""
+    if a is None:
+        return b
+    x0, y0 = min(a[0], b[0]), min(a[1], b[1])
+    x1, y1 = max(a[0] + a[2], b[0] + b[2]), max(a[1] + a[3], b[1] + b[3])
+    return (x0, y0, x1 - x0, y1 - y0)
+
+
 class DesignMaps:
     """Qt-free model of the stack. `changed(layer_name, rect)` follows every edit."""
 

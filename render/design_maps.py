@@ -20,22 +20,13 @@ import hashlib
 import moderngl
 import numpy as np
 
-from core.design_maps import LAYER_INDEX, DesignMaps, Rect
+from core.design_maps import LAYER_INDEX, DesignMaps, Rect, union
 from core.heights import mesh_sink, mesh_size, quad_excess, vertex_sink
 from render import derived_cache
 from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
 COLOR = LAYER_INDEX["color"]
-
-
-def union(a: Rect | None, b: Rect) -> Rect:
-    """The smallest rectangle holding both (x, y, width, height)."""
-    if a is None:
-        return b
-    x0, y0 = min(a[0], b[0]), min(a[1], b[1])
-    x1, y1 = max(a[0] + a[2], b[0] + b[2]), max(a[1] + a[3], b[1] + b[3])
-    return (x0, y0, x1 - x0, y1 - y0)
 
 
 class DesignMapTextures:

@@ -20,15 +20,14 @@ from time import monotonic
 
 import numpy as np
 
-from core.design_maps import LAYER_INDEX, LAYERS
+from core.design_maps import LAYER_INDEX, LAYERS, union
 from core.document import Document
 from core.project_file import document_data
 from core.stats import FrameStats
 from render import derived_cache, process_start
 from render.derived_cache import SHARED_DIR_ENV
-from render.design_maps import union
+from render.mapped import MappedArray
 from render.process_start import FULL, ROLES
-from render.render_server import MappedArray
 
 
 def _shared_folder() -> str:

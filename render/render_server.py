@@ -18,7 +18,6 @@ only the newest camera is drawn, never the positions in between.
 from __future__ import annotations
 
 import contextlib
-import mmap
 import os
 import time
 import traceback
@@ -31,6 +30,7 @@ from core.view_mode import ViewMode
 from render import context
 from render.binding import DocumentBinding
 from render.frame import FrameAborted, FramePipeline
+from render.mapped import MappedArray
 from render.process_start import DRAFT, FULL
 from render.slices import SliceTextures
 
@@ -43,22 +43,6 @@ FULL_NICE = 10
 REFINE_IDLE_S = 1.0
 REFINE_WAIT_S = 3.0  # but no longer than this after the draft that lacked them (the wind asks on)
 RETRY_S = 0.1  # how often the draft process looks for sums the full process is building
-
-
-class MappedArray:
-    """A numpy array over a file both processes map (in /dev/shm: memory, not disk)."""
-
-    def __init__(self, path: str, shape: tuple[int, ...], dtype=np.float32) -> None:
-        self.path = path
-        nbytes = int(np.prod(shape)) * np.dtype(dtype).itemsize
-        with open(path, "r+b") as file:  # the mapping keeps its own descriptor
-            self._map = mmap.mmap(file.fileno(), nbytes)
-        self.array = np.ndarray(shape, dtype, buffer=self._map)
-
-    def close(self) -> None:
-        del self.array
-        with contextlib.suppress(BufferError):  # a view still held: unmapped when it goes
-            self._map.close()
 
 
 def _yield_to_others() -> None:
