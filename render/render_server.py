@@ -47,10 +47,10 @@ RETRY_S = 0.1  # how often the draft process looks for sums the full process is 
 
 def _yield_to_others() -> None:
     """Every thread of this process (llvmpipe's too) runs only when no other process wants a
-    core (SCHED_IDLE, Linux): the full process after its first frame. At nice 10 its stale
-    frame's passes still took enough of the cores to make a draft drawn meanwhile take
-    110-165 ms instead of 85; before its first frame it keeps nice 10, so that the window
-    building its widgets does not hold back the start."""
+    core (SCHED_IDLE, Linux): the full process after its first frame, so that a full frame
+    made stale by new input takes nothing from the draft that answers it (nice 10 alone still
+    left it a share). Before its first frame it keeps nice 10: the window building its
+    widgets must not hold back the start."""
     if not hasattr(os, "sched_setscheduler"):
         return
     with contextlib.suppress(OSError):
