@@ -33,9 +33,9 @@ def _floor_loader(patch: str):
     """load_program for a renderer module whose fragment stage begins with `patch`."""
     from render.shaders import ShaderError, stage_source
 
-    def floor_program(ctx, file):
+    def floor_program(ctx, file, defines=()):
         def stage(kind):
-            text = stage_source(file, kind)
+            text = stage_source(file, kind, defines)
             marker = "void main() {\n"
             if kind == "FRAGMENT_SHADER":  # the file's last main(): the fragment stage's
                 head, found, tail = text.rpartition(marker)

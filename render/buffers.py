@@ -60,9 +60,19 @@ class InstancedRenderer:
     buffer itself is new. Subclasses give `_make_vao` (None while they cannot draw yet)."""
 
     ctx: moderngl.Context
+    program: moderngl.Program
     instances: moderngl.Buffer | None
     vao: moderngl.VertexArray | None
     instance_count: int
+
+    def use_program(self, program: moderngl.Program) -> None:
+        """Draw with `program` from now on: a variant of the same file (the same inputs), such
+        as its still-air one (render/shaders.py wind_defines). Its vertex array is made anew."""
+        if program is self.program:
+            return
+        self.program = program
+        if self.vao is not None:
+            self._rebuild_vao()
 
     def set_instances(self, instances: np.ndarray) -> None:
         """The cells to draw: an INSTANCE_DTYPE array."""

@@ -16,7 +16,7 @@ from core.lod import NO_FADE
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
-from render.shaders import load_program
+from render.shaders import load_program, wind_defines
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 
@@ -144,6 +144,11 @@ class ImageRenderer:
     def prepare(self, frame: FrameUniforms) -> None:
         if self.textures is None:
             return
+        program = load_program(self.ctx, "image.glsl", wind_defines(frame.wind.enabled))
+        if program is not self.program:
+            self.program = program
+            for batch in self.batches.values():
+                batch.use_program(program)
         p = self.program
         frame.apply(p, self.technique_color)
         if self.facing is not None:
@@ -153,8 +158,9 @@ class ImageRenderer:
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()
-        p["u_grass_height"].value = float(self.textures.height)  # the wind's bend (_wind.glsl)
-        p["u_canopy"].value = self.canopy
+        if "u_grass_height" in p:  # the wind's bend (_wind.glsl): still air reads neither
+            p["u_grass_height"].value = float(self.textures.height)
+            p["u_canopy"].value = self.canopy
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
         own, over = self.level_shade(frame.lighting.blade_ao_height)
         p["u_level_shade"].write(np.ascontiguousarray(own, np.float32))

@@ -47,11 +47,19 @@ def snippet_source(name: str) -> str:
     return "\n".join(_expand(name)) + "\n"
 
 
-def stage_source(name: str, stage: str) -> str:
+def stage_source(name: str, stage: str, defines: tuple[str, ...] = ()) -> str:
     lines = _expand(name)
     if not lines or not lines[0].startswith("#version"):
         raise ShaderError(f"shaders/{name}: line 1 must be the #version directive")
-    return "\n".join([lines[0], f"#define {stage}", "#line 2", *lines[1:]]) + "\n"
+    flags = [f"#define {flag}" for flag in defines]
+    return "\n".join([lines[0], f"#define {stage}", *flags, "#line 2", *lines[1:]]) + "\n"
+
+
+def wind_defines(enabled: bool) -> tuple[str, ...]:
+    """The defines of a program's variant for still air or wind (shaders/_wind.glsl WIND_ON).
+    A CPU renderer runs both sides of a branch, so a uniform switch made still frames pay for
+    the wind's lookups and bends; the two variants draw the same picture as that switch did."""
+    return ("WIND",) if enabled else ()
 
 
 def program_names() -> list[str]:
@@ -61,25 +69,28 @@ def program_names() -> list[str]:
 
 
 # per context object (not its id: a new context at a reused address must not get dead
-# programs), then per file; a context that goes away takes its programs with it
-_cache: weakref.WeakKeyDictionary[moderngl.Context, dict[str, moderngl.Program]] = (
-    weakref.WeakKeyDictionary()
-)
+# programs), then per file and defines; a context that goes away takes its programs with it
+_cache: weakref.WeakKeyDictionary[
+    moderngl.Context, dict[tuple[str, tuple[str, ...]], moderngl.Program]
+] = weakref.WeakKeyDictionary()
 
 
-def load_program(ctx: moderngl.Context, name: str) -> moderngl.Program:
-    """The compiled program in shaders/NAME, cached per context."""
+def load_program(
+    ctx: moderngl.Context, name: str, defines: tuple[str, ...] = ()
+) -> moderngl.Program:
+    """The compiled program in shaders/NAME with `defines` set, cached per context."""
     programs = _cache.setdefault(ctx, {})
-    if name in programs:
-        return programs[name]
+    key = (name, tuple(defines))
+    if key in programs:
+        return programs[key]
     try:
         program = ctx.program(
-            vertex_shader=stage_source(name, "VERTEX_SHADER"),
-            fragment_shader=stage_source(name, "FRAGMENT_SHADER"),
+            vertex_shader=stage_source(name, "VERTEX_SHADER", key[1]),
+            fragment_shader=stage_source(name, "FRAGMENT_SHADER", key[1]),
         )
     except ShaderError:
         raise
     except Exception as exc:
         raise ShaderError(f"shaders/{name} failed to build:\n{exc}") from exc
-    programs[name] = program
+    programs[key] = program
     return program

@@ -76,7 +76,6 @@ def wind_uniforms(wind: Wind, time: float) -> dict[str, object]:
     turbulence_tile = wind.turbulence_scale * NOISE_FEATURES
     gust, turbulence = wind.offsets(time)
     return {
-        "u_wind_on": wind.enabled,
         "u_wind_noise": WIND_UNIT,
         "u_wind_heading": tuple(float(v) for v in wind.heading),
         "u_gust_shift": tuple(float(v) for v in gust % gust_tile),

@@ -14,7 +14,7 @@ import numpy as np
 from core.lod import NO_FADE
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
-from render.shaders import load_program
+from render.shaders import load_program, wind_defines
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
 
@@ -85,6 +85,7 @@ class VolumeRenderer(InstancedRenderer):
         t = self.textures
         if t is None:
             return
+        self.use_program(load_program(self.ctx, "volume.glsl", wind_defines(frame.wind.enabled)))
         p = self.program
         frame.apply(p, self.technique_color)
         p["u_ground"].value = GROUND_UNIT + self.density_channel

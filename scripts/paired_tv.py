@@ -1,13 +1,15 @@
-"""t_v of the meadow's default frame (950 × 720) for an earlier commit and for the working tree,
-measured alternately in one run: this machine's timings drift by ±30 % between runs, so a
-speed-up is only honest as a ratio of times taken side by side.
+"""The meadow's default frame (950 × 720) for an earlier commit and for the working tree: the
+whole frame (t_a), its volume pass (t_v) and its image-based pass (t_i), measured alternately
+in one run: this machine's timings drift by ±30 % between runs, so a speed-up is only honest
+as a ratio of times taken side by side.
 
     .venv/bin/python scripts/paired_tv.py REV [--rounds 3] [--frames 5]
 
-REV is checked out into a temporary git worktree and imported ahead of the installed tree
-(PYTHONPATH); each round renders a few frames with each tree in a fresh process and reports
-the medians and their ratio, and how far the two trees' frames differ (quarter-resolution
-FLIP, the issue's measure of "the same image"). Prints JSON.
+REV is checked out into a temporary git worktree and run ahead of the installed tree
+(PYTHONPATH) through the command line, whose `profile` and `render` keep their names and
+output across commits; each round profiles the default camera's frames with each tree in a
+fresh process and reports each time's median and the ratios, and how far the two trees'
+frames differ (quarter-resolution FLIP, the issue's measure of "the same image"). Prints JSON.
 """
 
 from __future__ import annotations
@@ -22,34 +24,31 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from PIL import Image
 
 ROOT = Path(__file__).resolve().parent.parent
-PROBE = """
-import json, statistics, sys
-import numpy as np
-from app.scenes import get_scene
-from render.headless import HeadlessRenderer
-doc = get_scene("meadow").document()
-camera = doc.camera()
-with HeadlessRenderer(doc) as renderer:
-    image, _ = renderer.render(camera, (950, 720))
-    times = [renderer.render(camera, (950, 720))[1].t_v_ms for _ in range(int(sys.argv[1]))]
-np.save(sys.argv[2], image)
-print(json.dumps(statistics.median(times)))
-"""
+KEYS = ("t_a_ms", "t_v_ms", "t_i_ms")
+CLI = "import sys; sys.argv = ['sward'] + sys.argv[1:]; from app.cli import main; sys.exit(main())"
+SCENE = ["--scene", "meadow", "--size", "950x720"]
 
 
-def _t_v(tree: Path, frames: int, image: Path) -> float:
+def _sward(tree: Path, *args: str) -> None:
     env = {**os.environ, "PYTHONPATH": str(tree)}
-    out = subprocess.run(
-        [sys.executable, "-c", PROBE, str(frames), str(image)],
+    subprocess.run(
+        [sys.executable, "-c", CLI, *args],
         cwd=tempfile.gettempdir(),
         env=env,
         check=True,
         capture_output=True,
         text=True,
     )
-    return float(out.stdout.strip().splitlines()[-1])
+
+
+def _times(tree: Path, frames: int, out: Path) -> dict[str, float]:
+    """Medians of the default camera's frames (`sward profile`, its first viewpoint)."""
+    _sward(tree, "profile", *SCENE, "--frames", str(frames), "--out", str(out))
+    default = json.loads(out.read_text())["viewpoints"][0]["frames"]
+    return {k: statistics.median(f[k] for f in default) for k in KEYS}
 
 
 def main() -> None:
@@ -67,18 +66,25 @@ def main() -> None:
         )
         try:
             rounds = []
-            images = Path(tmp, "before.npy"), Path(tmp, "now.npy")
+            stats = Path(tmp, "stats.json")
             for _ in range(args.rounds):
-                before = _t_v(old, args.frames, images[0])
-                now = _t_v(ROOT, args.frames, images[1])
-                rounds.append({"before_ms": before, "now_ms": now, "ratio": before / now})
-            flip = _flip_quarter(*(np.load(p) for p in images))
+                before = _times(old, args.frames, stats)
+                now = _times(ROOT, args.frames, stats)
+                ratios = {f"ratio_{k[:-3]}": before[k] / now[k] for k in KEYS}
+                rounds.append({"before": before, "now": now, **ratios})
+            images = Path(tmp, "before.png"), Path(tmp, "now.png")
+            for tree, image in zip((old, ROOT), images, strict=True):
+                _sward(tree, "render", *SCENE, "--out", str(image))
+            flip = _flip_quarter(*(np.asarray(Image.open(p).convert("RGB")) for p in images))
         finally:
             subprocess.run(
                 ["git", "-C", str(ROOT), "worktree", "remove", "--force", str(old)], check=False
             )
-    ratios = [r["ratio"] for r in rounds]
-    result = {"rev": args.rev, "rounds": rounds, "median_ratio": statistics.median(ratios)}
+    medians = {
+        f"median_ratio_{k[:-3]}": statistics.median(r[f"ratio_{k[:-3]}"] for r in rounds)
+        for k in KEYS
+    }
+    result = {"rev": args.rev, "rounds": rounds, **medians}
     print(json.dumps({**result, "flip_quarter": flip}))
 
 

@@ -4,7 +4,12 @@
 // frequency and low amplitude); a blade is the quadratic Bézier curve of its trajectory, its tip
 // moved by the displacement, its middle control point by a quarter of it, and the curve scaled
 // about the root back to its length at rest.
-uniform bool u_wind_on;
+// whether the wind blows: a define, not a uniform (render/shaders.py wind_defines)
+#if defined WIND
+const bool WIND_ON = true;
+#else
+const bool WIND_ON = false;
+#endif
 uniform sampler2D u_wind_noise;  // r: gusts, gb: turbulence, each -1 … 1, repeating
 uniform vec2 u_wind_heading;     // unit (x, z) the wind blows towards
 uniform vec2 u_gust_shift;       // how far the patterns have travelled (world, wrapped)
@@ -28,7 +33,7 @@ vec3 wind_view(vec3 lit, vec2 lean) {
 
 // the tip displacement (x, z) at a world point, a fraction of a blade's length
 vec2 wind_lean(vec2 xz) {
-    if (!u_wind_on) return vec2(0.0);
+    if (!WIND_ON) return vec2(0.0);
     float gust = textureLod(u_wind_noise, (xz - u_gust_shift) / u_gust_tile, 0.0).r;
     vec2 eddy = textureLod(u_wind_noise, (xz - u_turbulence_shift) / u_turbulence_tile, 0.0).gb;
     vec2 w = u_wind_heading * (u_gust_strength * 0.5 * (1.0 + gust)) + u_turbulence_strength * eddy;

@@ -96,7 +96,7 @@ void main() {
     vec2 at = v_patch;
     vec2 lean = wind_lean(v_origin + v_patch);
     WindShear shear = wind_still(u_grass_height);
-    if (u_wind_on) {
+    if (WIND_ON) {
         shear = wind_shear(lean, u_grass_height);
         at -= wind_unbend(shear, u_canopy * shear.top).yz;
     }

@@ -226,7 +226,7 @@ void main() {
     // angles, metres nearer)
     vec2 lean = vec2(0.0);
     WindShear shear = wind_still(u_height);
-    if (u_wind_on) {
+    if (WIND_ON) {
         float over = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
         float run = d.y < -1e-4 ? clamp((over - 0.5 * u_height) / -d.y, 0.0, 4.0) : 0.0;
         lean = wind_lean(v_origin + e.xz + run * d.xz);
@@ -236,7 +236,7 @@ void main() {
 
     float side_spread = level_value(u_side_spread, lod);
     // the blades' mean diffuse factor seen along the ray, as bent by the wind here
-    float facing = u_wind_on ? facing_leaned(facing_entry(-d), lean) : facing_lambert(-d);
+    float facing = WIND_ON ? facing_leaned(facing_entry(-d), lean) : facing_lambert(-d);
     // The slices are sheared with the ground, the blades stand upright on it: on a slope the
     // light differs by the ratio of the two (core/slopes.py slope_tables, its first layer), at
     // the ray's elevation over the ground where it enters (tan θ = (u · n) / (n_y |u_xz|), as
@@ -469,7 +469,7 @@ void main() {
             float len = length(n);
             float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
             // under the wind the texel's normal turns with the blades' curve here (wind_axis)
-            if (u_wind_on) n = turn(n, vec3(0.0, 1.0, 0.0), wind_axis(shear, y));
+            if (WIND_ON) n = turn(n, vec3(0.0, 1.0, 0.0), wind_axis(shear, y));
             float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
             gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
             if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = sample_lambda;

@@ -1,6 +1,6 @@
 import pytest
 
-from render.shaders import ShaderError, load_program, program_names, stage_source
+from render.shaders import ShaderError, load_program, program_names, stage_source, wind_defines
 
 EXPECTED = {
     "geometry.glsl": {
@@ -48,9 +48,19 @@ EXPECTED = {
 
 
 @pytest.mark.parametrize("name", program_names())
-def test_every_shader_compiles_with_expected_inputs(ctx, name):
-    program = load_program(ctx, name)
+@pytest.mark.parametrize("wind", [False, True], ids=["still", "wind"])
+def test_every_shader_compiles_with_expected_inputs(ctx, name, wind):
+    program = load_program(ctx, name, wind_defines(wind))
     assert EXPECTED.get(name, set()) <= set(program)
+
+
+def test_wind_variant_is_its_own_program_and_reads_the_wind(ctx):
+    still = load_program(ctx, "geometry.glsl")
+    windy = load_program(ctx, "geometry.glsl", wind_defines(True))
+    assert windy is not still
+    assert windy is load_program(ctx, "geometry.glsl", ("WIND",))
+    # still air reads no wind noise; the wind's variant does
+    assert "u_wind_noise" not in still and "u_wind_noise" in windy
 
 
 def test_every_program_is_known():
