@@ -123,6 +123,15 @@ def ridged_hills(size: int, seed: int = 3) -> np.ndarray:
 SLICE_GRIDS = (1, 2, 3, 4, 6)  # the grids an image-based slice is drawn with, quads per side
 
 
+def _texel_bends(h: np.ndarray, scale: float, dx: float, dz: float) -> np.ndarray:
+    """|h_xx| + |h_xz| + |h_zz| (world units) at the inner texels of `h` (rows along z;
+    values 0 … 1 times `scale`), from its second differences; dx, dz: cells per texel."""
+    hxx = np.abs(h[1:-1, 2:] - 2.0 * h[1:-1, 1:-1] + h[1:-1, :-2]) / (dx * dx)
+    hzz = np.abs(h[2:, 1:-1] - 2.0 * h[1:-1, 1:-1] + h[:-2, 1:-1]) / (dz * dz)
+    hxz = np.abs(h[2:, 2:] - h[2:, :-2] - h[:-2, 2:] + h[:-2, :-2]) / (4.0 * dx * dz)
+    return (hxx + hxz + hzz) * scale
+
+
 def ground_curvature(heights: np.ndarray, scale: float, columns: int, rows: int) -> float:
     """The largest |h_xx| + |h_xz| + |h_zz| of the ground (world units, cells 1 wide), from the
     height map's second differences (rows along z; values 0 … 1 times `scale`): a bound on
@@ -130,18 +139,79 @@ def ground_curvature(heights: np.ndarray, scale: float, columns: int, rows: int)
     h = np.asarray(heights, np.float64)
     if h.shape[0] < 3 or h.shape[1] < 3 or scale <= 0.0:
         return 0.0
-    dx, dz = columns / h.shape[1], rows / h.shape[0]
-    hxx = np.abs(h[1:-1, 2:] - 2.0 * h[1:-1, 1:-1] + h[1:-1, :-2]) / (dx * dx)
-    hzz = np.abs(h[2:, 1:-1] - 2.0 * h[1:-1, 1:-1] + h[:-2, 1:-1]) / (dz * dz)
-    hxz = np.abs(h[2:, 2:] - h[2:, :-2] - h[:-2, 2:] + h[:-2, :-2]) / (4.0 * dx * dz)
-    return float((hxx + hxz + hzz).max()) * scale
+    return float(_texel_bends(h, scale, columns / h.shape[1], rows / h.shape[0]).max())
+
+
+def _spread(values: np.ndarray, axis: int) -> np.ndarray:
+    """Each entry the largest of itself and its two neighbours along `axis`."""
+    n = values.shape[axis]
+    p = np.concatenate([np.take(values, [0], axis), values, np.take(values, [n - 1], axis)], axis)
+    return np.maximum(
+        np.maximum(np.take(p, range(n), axis), np.take(p, range(1, n + 1), axis)),
+        np.take(p, range(2, n + 2), axis),
+    )
+
+
+def cell_curvature(heights: np.ndarray, scale: float, columns: int, rows: int) -> np.ndarray:
+    """ground_curvature of each cell's own ground, (columns, rows) float32: the largest bend of
+    the texels within a texel of the cell (the map's edge texels' included, the surface held
+    level beyond them). The bilinear surface bends only along texel-centre lines and across
+    texel squares, each reckoned from the texels next to it, so a texel's bend reaches no
+    further than a texel: a grid over a gentle cell need not be as fine as the steepest hollow
+    of the terrain demands (slice_grids). A band of texel rows at a time."""
+    h, w = heights.shape
+    if h < 3 or w < 3 or scale <= 0.0:
+        return np.zeros((columns, rows), np.float32)
+    padded = np.pad(np.asarray(heights, np.float32), 1, mode="edge")
+    dx, dz = columns / w, rows / h
+    x_starts = (np.arange(columns) * w) // columns  # each cell's first texel
+    z_starts = (np.arange(rows) * h) // rows
+    by_row = np.empty((h, columns), np.float32)  # per texel row, the cells' largest bends
+    band = max(1, 2_000_000 // w)
+    for r0 in range(0, h, band):
+        r1 = min(r0 + band, h)
+        bends = _texel_bends(padded[r0 : r1 + 2].astype(np.float64), scale, dx, dz)
+        by_row[r0:r1] = np.maximum.reduceat(_spread(bends, 1), x_starts, axis=1)
+    return np.ascontiguousarray(np.maximum.reduceat(_spread(by_row, 0), z_starts, axis=0).T)
+
+
+def block_maxima(values: np.ndarray) -> list[np.ndarray]:
+    """`values` (columns, rows) and its maxima over blocks of 2 × 2, 4 × 4, … cells, down to
+    one block: level k's entry (i, j) is the largest over cells [i 2^k, (i + 1) 2^k) × …"""
+    levels = [np.asarray(values, np.float32)]
+    while max(levels[-1].shape) > 1:
+        v = levels[-1]
+        v = np.pad(v, ((0, v.shape[0] % 2), (0, v.shape[1] % 2)))
+        levels.append(np.maximum(np.maximum(v[0::2, 0::2], v[1::2, 0::2]),
+                                 np.maximum(v[0::2, 1::2], v[1::2, 1::2])))  # fmt: skip
+    return levels
+
+
+def blocks_max(levels: list[np.ndarray], ix, iz, sx, sz) -> np.ndarray:
+    """The largest value over each block of sx × sz cells from cell (ix, iz) (integer arrays),
+    from block_maxima: at the level whose blocks are as large as the block's longer side, the
+    at most 2 × 2 blocks it reaches into (exact where it is one, as a quadtree's nodes are)."""
+    ix, iz, sx, sz = (np.asarray(a, np.int64) for a in (ix, iz, sx, sz))
+    out = np.zeros(ix.shape, np.float32)
+    level = np.ceil(np.log2(np.maximum(np.maximum(sx, sz), 1))).astype(np.int64)
+    level = np.minimum(level, len(levels) - 1)
+    for k in np.unique(level):
+        at = level == k
+        grid = levels[k]
+        i0, i1 = ix[at] >> k, np.minimum((ix[at] + sx[at] - 1) >> k, grid.shape[0] - 1)
+        j0, j1 = iz[at] >> k, np.minimum((iz[at] + sz[at] - 1) >> k, grid.shape[1] - 1)
+        i0, j0 = np.minimum(i0, grid.shape[0] - 1), np.minimum(j0, grid.shape[1] - 1)
+        out[at] = np.maximum(
+            np.maximum(grid[i0, j0], grid[i1, j0]), np.maximum(grid[i0, j1], grid[i1, j1])
+        )
+    return out
 
 
 def slice_grids(
     instances: np.ndarray,
     eye: np.ndarray,
     pixel: float,
-    curvature: float,
+    curvature: float | np.ndarray,
     grids: tuple[int, ...] = SLICE_GRIDS,
     tolerance: float = 0.5,
 ) -> np.ndarray:

@@ -9,7 +9,7 @@ import numba
 import numpy as np
 
 from core.grid import INSTANCE_DTYPE
-from core.heights import cell_ranges, ground_curvature
+from core.heights import block_maxima, blocks_max, cell_curvature, cell_ranges
 from core.lod import ALL_IN
 from core.quadtree import QuadTree
 from core.tiling import mirror_sign, noise_map
@@ -40,18 +40,20 @@ class Terrain:
     tree: QuadTree = field(init=False)
     cell_min: np.ndarray = field(init=False)  # (columns, rows) lowest ground per cell
     cell_max: np.ndarray = field(init=False)
-    curvature: float = field(init=False)  # core/heights.py ground_curvature (0: flat)
+    # a bound on the ground's bends, each cell's own (core/heights.py cell_curvature), and
+    # their maxima over blocks of 2 × 2, 4 × 4, … cells up to the whole terrain
+    bends: list[np.ndarray] = field(init=False)
 
     def __post_init__(self) -> None:
         if self.height_scale < 0:
             raise ValueError(f"height scale {self.height_scale:g} must not be negative")
         if self.heights is not None and self.height_scale > 0:
             lo, hi = cell_ranges(self.heights, self.height_scale, self.columns, self.rows)
-            curvature = ground_curvature(self.heights, self.height_scale, self.columns, self.rows)
+            bends = cell_curvature(self.heights, self.height_scale, self.columns, self.rows)
         else:
             lo = hi = np.zeros((self.columns, self.rows), np.float32)
-            curvature = 0.0
-        object.__setattr__(self, "curvature", curvature)
+            bends = np.zeros((self.columns, self.rows), np.float32)
+        object.__setattr__(self, "bends", block_maxima(bends))
         # C order: the compiled traversal is compiled for that layout once
         object.__setattr__(self, "cell_min", np.ascontiguousarray(lo, np.float32))
         object.__setattr__(self, "cell_max", np.ascontiguousarray(hi, np.float32))
@@ -81,6 +83,21 @@ class Terrain:
         ox, oz = self.origin
         fill_instances(out, records, ox, oz, self.columns, self.rows, self.noise, mirrored)
         return out.view(INSTANCE_DTYPE).reshape(records.shape[0])
+
+    @property
+    def curvature(self) -> float:
+        """The whole ground's bound (core/heights.py ground_curvature; 0: flat)."""
+        return float(self.bends[-1].max())
+
+    def curvature_of(self, instances: np.ndarray) -> np.ndarray:
+        """Per instance (INSTANCE_DTYPE), a bound on the bends of the ground it covers (core/
+        heights.py cell_curvature), for the grids its image-based slice is drawn with."""
+        ix = np.rint(instances["origin"][:, 0] - self.origin[0]).astype(np.int64)
+        iz = np.rint(instances["origin"][:, 1] - self.origin[1]).astype(np.int64)
+        sx = np.rint(instances["size"][:, 0]).astype(np.int64)
+        sz = np.rint(instances["size"][:, 1]).astype(np.int64)
+        ix, iz = np.clip(ix, 0, self.columns - 1), np.clip(iz, 0, self.rows - 1)
+        return blocks_max(self.bends, ix, iz, np.maximum(sx, 1), np.maximum(sz, 1))
 
     def all_cells(self) -> np.ndarray:
         ix, iz = np.meshgrid(np.arange(self.columns), np.arange(self.rows), indexing="ij")

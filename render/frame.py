@@ -417,9 +417,9 @@ class FramePipeline:
 
         drawn = []
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
-        curvature = self.terrain.curvature if self.terrain is not None else 0.0
+        terrain = self.terrain
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
-            grass.image.view = (frame.eye, pixel, curvature)  # its slices' grids
+            grass.image.view = (frame.eye, pixel, terrain)  # its slices' grids
             tu = time.perf_counter()
             batches = grass.upload(selected, frame.eye)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0

@@ -13,6 +13,7 @@ import numpy as np
 from core.canopy import Canopy
 from core.heights import SLICE_GRIDS, slice_grids
 from core.lod import NO_FADE
+from core.terrain import Terrain
 from render.buffers import InstancedRenderer, instance_layout
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
@@ -79,8 +80,9 @@ class ImageRenderer:
         # others the coarsest grid whose chords stray from the ground by under half a pixel
         # seen from the eye (`view`), or the finest without one.
         self.batches = {n: _Batch(ctx, self.program, n) for n in SLICE_GRIDS}
-        # (eye, radians a pixel, the ground's curvature: core/terrain.py), set each frame
-        self.view: tuple[np.ndarray, float, float] | None = None
+        # (eye, radians a pixel, the terrain: its ground's bends, core/terrain.py curvature_of),
+        # set each frame
+        self.view: tuple[np.ndarray, float, Terrain | None] | None = None
         self.instance_count = 0
         self.textures: SliceTextures | None = None
         self.facing: FacingTable | None = None  # set by the grass type (render/grass_type.py)
@@ -135,7 +137,9 @@ class ImageRenderer:
         finest = SLICE_GRIDS[-1]
         grids = np.full(instances.size, finest, np.int32)
         if self.view is not None and instances.size:
-            grids = slice_grids(instances, *self.view)
+            eye, pixel, terrain = self.view
+            bends = terrain.curvature_of(instances) if terrain is not None else 0.0
+            grids = slice_grids(instances, eye, pixel, bends)
         grids[instances["ground"][:, 1] <= self.flat_ground] = 1
         for n, batch in self.batches.items():
             batch.set_instances(instances[grids == n])

@@ -6,7 +6,11 @@ from hypothesis import strategies as st
 from core.heights import (
     SLICE_GRIDS,
     bilinear,
+    block_maxima,
+    blocks_max,
+    cell_curvature,
     cell_ranges,
+    ground_curvature,
     hills,
     mesh_sink,
     mesh_size,
@@ -133,15 +137,26 @@ def _chord_error(heights, scale, terrain, instance, n, samples=36):
     return float(np.abs(chord - ground(ox + fx * sx / n, oz + fz * sz / n)).max())
 
 
-@pytest.mark.parametrize("distance", [6.0, 20.0, 60.0])
-def test_slice_grids_keep_their_chords_within_half_a_pixel_of_the_ground(distance):
+@pytest.mark.parametrize(
+    ("size", "distance"), [(1, 6.0), (1, 20.0), (1, 60.0), (4, 320.0), (4, 960.0)]
+)
+def test_slice_grids_keep_their_chords_within_half_a_pixel_of_the_ground(distance, size):
+    """Each cell's grid from the bends of its own ground (Terrain.curvature_of), for single
+    cells and for macro-cells."""
     heights = hills(64, seed=5)
     terrain = Terrain.centred(24, 24, heights=heights, height_scale=3.0)
-    ix, iz = np.meshgrid(np.arange(0, 24, 2), np.arange(0, 24, 2), indexing="ij")
-    singles = terrain.cells(ix.ravel(), iz.ravel())
+    ix, iz = np.meshgrid(np.arange(0, 24, 2 * size), np.arange(0, 24, 2 * size), indexing="ij")
+    ix, iz = ix.ravel(), iz.ravel()
+    lo = np.array(
+        [terrain.cell_min[x : x + size, z : z + size].min() for x, z in zip(ix, iz, strict=True)]
+    )
+    hi = np.array(
+        [terrain.cell_max[x : x + size, z : z + size].max() for x, z in zip(ix, iz, strict=True)]
+    )
+    singles = terrain.cells(ix, iz, size, size, ground=(lo, hi))
     eye = np.array([0.0, 3.0 + distance, -12.0 - distance])
     pixel = 2.0 * np.tan(np.radians(25.0)) / 270
-    grids = slice_grids(singles, eye, pixel, terrain.curvature)
+    grids = slice_grids(singles, eye, pixel, terrain.curvature_of(singles))
     assert set(np.unique(grids)) <= set(SLICE_GRIDS)
     checked = 0
     for instance, n in zip(singles, grids, strict=True):
@@ -177,3 +192,41 @@ def test_slice_grids_coarsen_with_distance_and_are_one_quad_on_flat_ground():
         )
         == 1
     )
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    st.integers(8, 40), st.integers(8, 40), st.integers(0, 10_000),
+    st.integers(0, 39), st.integers(0, 39), st.integers(1, 16), st.integers(1, 16),
+)  # fmt: skip
+def test_blocks_max_bounds_every_block_and_is_exact_on_aligned_ones(cols, rows, seed, x, z, sx, sz):
+    values = np.random.default_rng(seed).random((cols, rows)).astype(np.float32)
+    x, z = x % cols, z % rows
+    sx, sz = min(sx, cols - x), min(sz, rows - z)
+    levels = block_maxima(values)
+    got = blocks_max(levels, [x], [z], [sx], [sz])[0]
+    assert got >= values[x : x + sx, z : z + sz].max()
+    k = max(sx, sz).bit_length() - 1  # an aligned power-of-two block: exactly its maximum
+    bx, bz = (x >> k) << k, (z >> k) << k
+    block = values[bx : bx + (1 << k), bz : bz + (1 << k)]
+    assert blocks_max(levels, [bx], [bz], [block.shape[0]], [block.shape[1]])[0] == block.max()
+
+
+def test_cell_curvature_is_the_ground_s_bound_cell_by_cell():
+    """Its largest is the whole ground's bound (or more, at the map's edge, where the surface
+    is held level); a cell on gentle ground gets less than one in the steepest hollow, so its
+    slice's grid is coarser there at the same distance, and never finer."""
+    heights = hills(64, seed=5)
+    bends = cell_curvature(heights, 3.0, 24, 24)
+    assert bends.shape == (24, 24) and bends.dtype == np.float32
+    assert bends.max() >= np.float32(ground_curvature(heights, 3.0, 24, 24))
+    assert np.percentile(bends, 50) < 0.7 * bends.max()
+    terrain = Terrain.centred(24, 24, heights=heights, height_scale=3.0)
+    cells = terrain.all_cells()
+    pixel = 2.0 * np.tan(np.radians(25.0)) / 270
+    eye = np.array([0.0, 20.0, -40.0])
+    own = slice_grids(cells, eye, pixel, terrain.curvature_of(cells))
+    worst = slice_grids(cells, eye, pixel, terrain.curvature)
+    assert np.all(own <= worst) and own.sum() < worst.sum()
+    flat = cell_curvature(np.full((16, 16), 0.5, np.float32), 3.0, 8, 8)
+    assert np.all(flat == 0.0)

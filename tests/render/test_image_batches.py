@@ -57,7 +57,8 @@ def test_far_cells_on_the_meadow_take_coarser_grids_and_the_same_picture(headles
     grass = renderer.pipeline.grass_types[0]
     counts = {n: batch.instance_count for n, batch in grass.image.batches.items()}
     assert sum(c for n, c in counts.items() if n < 6) > counts[6]  # most cells need less
-    object.__setattr__(renderer.pipeline.terrain, "curvature", np.inf)  # every grid the finest
+    terrain = renderer.pipeline.terrain  # every grid the finest
+    object.__setattr__(terrain, "curvature_of", lambda cells: np.full(len(cells), np.inf))
     finest, _ = renderer.render(camera, SIZE)
     counts = {n: batch.instance_count for n, batch in grass.image.batches.items()}
     assert counts[6] == sum(c for n, c in counts.items() if n > 1)
