@@ -11,6 +11,7 @@
 
 uniform mat4 u_view_proj;
 uniform float u_height;        // patch height (cuboid height)
+uniform vec2 u_band;           // the heights over the ground this pass counts (below)
 
 in vec3 in_corner;             // unit cube corner
 in vec2 in_origin;             // per instance: cell origin
@@ -31,8 +32,10 @@ flat out vec4 v_config;
 flat out vec2 v_ground;
 
 void main() {
-    // eq. 6.14: the cuboid reaches from the lowest ground to the grass over the highest
-    v_patch = in_corner * vec3(in_size.x, u_height + in_ground.y, in_size.y);
+    // eq. 6.14: the cuboid reaches from the lowest ground to the grass over the highest, or to
+    // the top of this pass's band of heights over it, above which its rays count nothing (a
+    // band pass of a type that grows among another: render/volume_order.py)
+    v_patch = in_corner * vec3(in_size.x, min(u_band.y, u_height) + in_ground.y, in_size.y);
     v_origin = in_origin;
     v_density = in_cell_density;
     v_size = in_size;
@@ -178,7 +181,8 @@ vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l, out 
 void main() {
     vec3 base = vec3(v_origin.x, v_ground.x, v_origin.y);  // the cuboid's corner in the world
     vec3 eye = u_eye - base;
-    float top = u_height + v_ground.y;
+    float band_top = min(u_band.y, u_height);
+    float top = band_top + v_ground.y;  // the cuboid's (vertex stage)
     vec3 d = normalize(v_patch - eye);                        // eq. 5.5 (no rotation yet)
     vec3 d_dx = dFdx(d), d_dy = dFdy(d);  // how the ray turns across the pixel
     vec3 e = v_patch;                                         // eq. 5.4
@@ -195,7 +199,7 @@ void main() {
         for (int k = 1; k <= u_skip_steps; ++k) {
             float lam = leave * float(k) / float(u_skip_steps);
             vec3 p = e + lam * d;
-            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + u_height) {
+            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + band_top) {
                 below = lam;
                 break;
             }
@@ -207,7 +211,7 @@ void main() {
         for (int k = 0; k < 5 && below > 0.0; ++k) {
             float lam = 0.5 * (start + below);
             vec3 p = e + lam * d;
-            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + u_height) below = lam;
+            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + band_top) below = lam;
             else start = lam;
         }
         e += start * d;
@@ -264,7 +268,6 @@ void main() {
     // The depth is that of the point where the ray became half opaque, for the fragment's own
     // test against what was drawn before it (ground, blades, image-based grass).
     const float depth_alpha = 0.5;
-    float band_top = min(u_band.y, u_height);
     float reached = 0.0;  // the farthest point of the ray known to lie above the ground
     // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
     // or if there is none: u_floor < 0);

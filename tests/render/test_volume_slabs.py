@@ -81,3 +81,31 @@ def test_rays_up_the_landscapes_hill_count_all_the_grass_they_cross(headless):
     moved = to_float(soil) - to_float(shaded)
     share = np.clip(moved[..., 2] - moved[..., 1], 0.0, 1.0)
     assert int((share[50:150] > 0.8).sum()) <= 5
+
+
+def test_band_passes_of_one_type_show_what_its_single_pass_shows(headless, monkeypatch):
+    """A type that grows among another is drawn in passes of a band of heights each (render/
+    volume_order.py), each pass's cuboids only as tall as its band's top over the highest
+    ground (shaders/volume.glsl): its rays count nothing above it. Split so, a type's grass on
+    hills, where its macro-cells' cuboids are tall, shows what its one pass does."""
+    import render.frame
+    from core.heights import hills
+    from render.volume_order import INF
+
+    scene = dataclasses.replace(
+        SCENE,
+        height_map=lambda w, h: hills(w, seed=4)[:h, :w],
+        height_scale=0.5,  # gentle: the grass is as tall as a macro-cell's ground varies
+        lod=LodConfig((LodLevel("volume", 0.0, None, slices=4, macro=4),)),
+    )
+    camera = Camera.from_eye_target((0.0, 4.0, 30.0), (0.0, 0.0, 0.0), fov_y=30.0)
+    renderer = headless(scene.document(), mode="lod")
+    whole = to_float(renderer.render(camera, (256, 192))[0])
+    height = float(renderer.pipeline.grass_types[0].image.textures.height)
+    low = height / 3.0
+    split = [[((0, 0), (0.0, low)), ((0, 1), (low, INF))]]
+    monkeypatch.setattr(render.frame, "stacked_parts", lambda beneath, bands=2: split)
+    parts = to_float(renderer.render(camera, (256, 192))[0])
+    blocks = np.abs(downsample(parts, 8) - downsample(whole, 8)).max(axis=-1)
+    assert np.abs(parts - whole).mean() < 0.002
+    assert np.percentile(blocks, 99) < 0.01
