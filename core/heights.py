@@ -242,12 +242,84 @@ def slice_grids(
 # vertex is therefore lowered by the most any chord next to it rises over the surface, so that
 # the mesh lies on or under the ground the grass stands on, for any height map.
 MESH_LIMIT = 256  # grid quads per side at most: one per height-map texel up to this size
+# The mesh is drawn in GROUND_CHUNKS × GROUND_CHUNKS chunks, each at the coarsest of its levels
+# that stays within half a pixel of the finest seen from the eye (render/ground.py): far away
+# the finest's triangles cover a few pixels each, and llvmpipe shades every 4 × 4 pixel block a
+# triangle touches whole. Level k's quads are 2^k times as large, as far as a chunk has quads
+# to merge; each level is sunk under the surface on its own (mesh_sink).
+GROUND_CHUNKS = 8
+GROUND_LEVELS = 4
 
 
 def mesh_size(map_size: tuple[int, int]) -> tuple[int, int]:
-    """Grid quads (along u, along v) of the ground mesh for a height map of (width, height)
-    texels: one quad per texel, at most MESH_LIMIT per side."""
-    return min(int(map_size[0]), MESH_LIMIT), min(int(map_size[1]), MESH_LIMIT)
+    """Grid quads (along u, along v) of the ground mesh's finest level for a height map of
+    (width, height) texels: one quad per texel, at most MESH_LIMIT per side, rounded up to
+    whole chunks."""
+
+    def whole(texels: int) -> int:
+        return -(-min(int(texels), MESH_LIMIT) // GROUND_CHUNKS) * GROUND_CHUNKS
+
+    return whole(map_size[0]), whole(map_size[1])
+
+
+def mesh_levels(map_size: tuple[int, int]) -> list[tuple[int, int]]:
+    """The quads (along u, along v) of each level of the ground mesh, finest first; a level
+    that would merge no quads is left out."""
+    nu, nv = mesh_size(map_size)
+    per_u, per_v = nu // GROUND_CHUNKS, nv // GROUND_CHUNKS
+    levels: list[tuple[int, int]] = []
+    for k in range(GROUND_LEVELS):
+        quads = (GROUND_CHUNKS * max(per_u >> k, 1), GROUND_CHUNKS * max(per_v >> k, 1))
+        if not levels or quads != levels[-1]:
+            levels.append(quads)
+    return levels
+
+
+def mesh_heights(heights: np.ndarray, quads: tuple[int, int], sink: np.ndarray) -> np.ndarray:
+    """The height of each vertex of a ground mesh of `quads` (rows along v), sunk by `sink`
+    (mesh_sink), in height-map units: the height map in the float16 the textures hold, sampled
+    as GL_LINEAR does at the vertex (shaders/ground.glsl)."""
+    nu, nv = quads
+    h = np.asarray(heights, np.float32).astype(np.float16).astype(np.float64)
+    return bilinear_grid(h, np.arange(nu + 1) / nu, np.arange(nv + 1) / nv).T - sink
+
+
+def _mesh_at(mesh: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """A mesh's vertex heights (rows along v) interpolated over its triangles (split as
+    render/ground.py grid_mesh splits them) at the vertices of a finer grid of `shape`."""
+    nv, nu = mesh.shape[0] - 1, mesh.shape[1] - 1
+    x = np.arange(shape[1]) * nu / (shape[1] - 1)
+    z = np.arange(shape[0]) * nv / (shape[0] - 1)
+    a = np.minimum(np.floor(x), nu - 1).astype(np.int64)
+    b = np.minimum(np.floor(z), nv - 1).astype(np.int64)
+    s, t = (x - a)[None, :], (z - b)[:, None]
+    h00, h10 = mesh[b][:, a], mesh[b][:, a + 1]
+    h01, h11 = mesh[b + 1][:, a], mesh[b + 1][:, a + 1]
+    lower = h00 + s * (h10 - h00) + t * (h01 - h00)
+    upper = h11 + (1.0 - s) * (h01 - h11) + (1.0 - t) * (h10 - h11)
+    return np.where(s + t <= 1.0, lower, upper)
+
+
+def chunk_deviation(
+    heights: np.ndarray, levels: list[tuple[int, int]], sinks: list[np.ndarray]
+) -> np.ndarray:
+    """(levels, GROUND_CHUNKS along v, GROUND_CHUNKS along u), height-map units: how far each
+    level's mesh lies from the finest's in each chunk, at the finest's vertices, plus how far
+    the finest sinks there: what drawing the chunk at that level moves its ground by at most."""
+    meshes = [mesh_heights(heights, q, s) for q, s in zip(levels, sinks, strict=True)]
+    fine = meshes[0]
+    nv, nu = fine.shape[0] - 1, fine.shape[1] - 1
+    c = GROUND_CHUNKS
+
+    def per_chunk(values: np.ndarray) -> np.ndarray:
+        corners = np.maximum(
+            np.maximum(values[:-1, :-1], values[1:, :-1]),
+            np.maximum(values[:-1, 1:], values[1:, 1:]),
+        )  # each quad's largest at its corners
+        return corners.reshape(c, nv // c, c, nu // c).max(axis=(1, 3))
+
+    own = per_chunk(sinks[0].astype(np.float64))
+    return np.stack([own + per_chunk(np.abs(_mesh_at(m, fine.shape) - fine)) for m in meshes])
 
 
 def _quad_lines(quads: int, texels: int, first: int, last: int):

@@ -16,17 +16,53 @@ llvmpipe a mipmapped sampler cost the ground pass several times over even at lev
 from __future__ import annotations
 
 import hashlib
+from dataclasses import dataclass
 
 import moderngl
 import numpy as np
 
 from core.design_maps import LAYER_INDEX, DesignMaps, Rect, union
-from core.heights import mesh_sink, mesh_size, quad_excess, vertex_sink
+from core.heights import (
+    chunk_deviation,
+    mesh_heights,
+    mesh_levels,
+    mesh_sink,
+    quad_excess,
+    vertex_sink,
+)
 from render import derived_cache
 from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
 COLOR = LAYER_INDEX["color"]
+
+
+@dataclass(frozen=True)
+class GroundChunks:
+    """The ground mesh's chunks (core/heights.py GROUND_CHUNKS per side, rows along v), in
+    height-map units: how far drawing each at each level moves its ground at most (core/
+    heights.py chunk_deviation), and the lowest and highest its finest level reaches."""
+
+    deviation: np.ndarray  # (levels, chunks along v, chunks along u)
+    low: np.ndarray  # (chunks along v, chunks along u)
+    high: np.ndarray
+
+    @classmethod
+    def of(cls, heights: np.ndarray, levels: list[tuple[int, int]], sinks: list[np.ndarray]):
+        deviation = chunk_deviation(heights, levels, sinks)
+        fine = mesh_heights(heights, levels[0], sinks[0])
+        c = deviation.shape[1]
+        nv, nu = fine.shape[0] - 1, fine.shape[1] - 1
+        lo = np.minimum(
+            np.minimum(fine[:-1, :-1], fine[1:, :-1]), np.minimum(fine[:-1, 1:], fine[1:, 1:])
+        )
+        hi = np.maximum(
+            np.maximum(fine[:-1, :-1], fine[1:, :-1]), np.maximum(fine[:-1, 1:], fine[1:, 1:])
+        )
+        shape = (c, nv // c, c, nu // c)  # each quad's lowest and highest corner, per chunk
+        return cls(
+            deviation, lo.reshape(shape).min(axis=(1, 3)), hi.reshape(shape).max(axis=(1, 3))
+        )
 
 
 class DesignMapTextures:
@@ -48,8 +84,11 @@ class DesignMapTextures:
         self.uploaded_texels = w * h * layers  # for tests and the profiler: what went to the GPU
         self.pending: dict[int, Rect] = {}  # layer index -> dirty rectangle not yet uploaded
         self.grounds: dict[int, moderngl.Texture] = {}  # density channel -> (height, density)
-        self._sink: moderngl.Texture | None = None  # the ground mesh's sink per vertex
-        self._excess: np.ndarray | None = None  # … and its per-quad excess (core/heights.py)
+        # the ground mesh's levels (core/heights.py mesh_levels): each one's sink per vertex,
+        # its per-quad excess (core/heights.py), and what each chunk moves by at each level
+        self._sinks: list[moderngl.Texture] = []
+        self._excess: list[np.ndarray] = []
+        self._chunks: GroundChunks | None = None
         maps.changed.connect(self.update)
 
     def _far_texels(self, rect: Rect) -> bytes:
@@ -83,41 +122,59 @@ class DesignMapTextures:
         return texture
 
     def mesh_sink(self) -> tuple[moderngl.Texture, tuple[int, int]]:
-        """How far each vertex of the ground mesh sinks to lie under the grass's ground
-        (core/heights.py mesh_sink; made at first use, its rows redone when heights change),
-        and the mesh's quads per side. Kept between runs by the heights it is of (render/
+        """How far each vertex of the ground mesh's finest level sinks to lie under the grass's
+        ground, and its quads per side (ground_levels)."""
+        textures, levels = self.ground_levels()[:2]
+        return textures[0], levels[0]
+
+    def ground_levels(self) -> tuple[list[moderngl.Texture], list[tuple[int, int]], GroundChunks]:
+        """Per level of the ground mesh (core/heights.py mesh_levels), how far each vertex
+        sinks to lie under the grass's ground (core/heights.py mesh_sink), and its quads per
+        side; and its chunks' extents. Made at first use, the rows an edit reaches redone when
+        heights change; kept between runs by the heights they are of (render/
         derived_cache.py)."""
-        quads = mesh_size(self.maps.size)
-        if self._sink is None:
+        levels = mesh_levels(self.maps.size)
+        if not self._sinks:
             heights = self.maps.stack[HEIGHT, ..., 0]
-            digest = hashlib.blake2b(np.ascontiguousarray(heights).tobytes(), digest_size=16)
-            digest.update(np.asarray(quads, np.int64).tobytes())
-            made = derived_cache.fetch(
-                "sink", digest.hexdigest(), lambda: mesh_sink(heights, quads)
-            )
-            assert made is not None
-            sink, excess = made
-            if excess.shape != (quads[1], quads[0]):  # not this mesh's: made again
-                sink, excess = mesh_sink(heights, quads)
-            self._excess = excess.copy()  # its rows are redone in place after an edit
-            self._sink = self.ctx.texture(
-                (quads[0] + 1, quads[1] + 1), 1, sink.tobytes(), dtype="f4"
-            )
-            self._sink.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        return self._sink, quads
+            for quads in levels:
+                digest = hashlib.blake2b(np.ascontiguousarray(heights).tobytes(), digest_size=16)
+                digest.update(np.asarray(quads, np.int64).tobytes())
+                made = derived_cache.fetch(
+                    "sink", digest.hexdigest(), lambda q=quads: mesh_sink(heights, q)
+                )
+                assert made is not None
+                sink, excess = made
+                if excess.shape != (quads[1], quads[0]):  # not this mesh's: made again
+                    sink, excess = mesh_sink(heights, quads)
+                self._excess.append(excess.copy())  # its rows are redone in place after an edit
+                texture = self.ctx.texture(
+                    (quads[0] + 1, quads[1] + 1), 1, sink.tobytes(), dtype="f4"
+                )
+                texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+                self._sinks.append(texture)
+            self._chunks = None
+        if self._chunks is None:
+            heights = self.maps.stack[HEIGHT, ..., 0]
+            sinks = [vertex_sink(e) for e in self._excess]
+            self._chunks = GroundChunks.of(heights, levels, sinks)
+        return self._sinks, levels, self._chunks
 
     def _update_sink(self, rect: Rect) -> None:
-        """Redo the quad rows of the ground mesh that the height texels in `rect` reach."""
-        if self._sink is None or self._excess is None:
+        """Redo the quad rows of each level of the ground mesh that the height texels in
+        `rect` reach."""
+        if not self._sinks:
             return
-        nu, nv = mesh_size(self.maps.size)
+        heights = self.maps.stack[HEIGHT, ..., 0]
         texel_rows = self.maps.size[1]
-        b0 = max(int(np.floor((rect[1] - 1) * nv / texel_rows)), 0)
-        b1 = min(int(np.ceil((rect[1] + rect[3] + 1) * nv / texel_rows)), nv)
-        if b1 > b0:
-            heights = self.maps.stack[HEIGHT, ..., 0]
-            self._excess[b0:b1] = quad_excess(heights, (nu, nv), (b0, b1))
-            self._sink.write(vertex_sink(self._excess).tobytes())
+        for (nu, nv), excess, texture in zip(
+            mesh_levels(self.maps.size), self._excess, self._sinks, strict=True
+        ):
+            b0 = max(int(np.floor((rect[1] - 1) * nv / texel_rows)), 0)
+            b1 = min(int(np.ceil((rect[1] + rect[3] + 1) * nv / texel_rows)), nv)
+            if b1 > b0:
+                excess[b0:b1] = quad_excess(heights, (nu, nv), (b0, b1))
+                texture.write(vertex_sink(excess).tobytes())
+        self._chunks = None
 
     def update(self, name: str, rect: Rect) -> None:
         """Note a changed rectangle of one map; the next `flush` uploads it."""
@@ -164,5 +221,5 @@ class DesignMapTextures:
         self.far.release()
         for texture in self.grounds.values():
             texture.release()
-        if self._sink is not None:
-            self._sink.release()
+        for texture in self._sinks:
+            texture.release()

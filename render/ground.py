@@ -6,7 +6,8 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
-from render.design_maps import DesignMapTextures
+from core.heights import GROUND_CHUNKS
+from render.design_maps import DesignMapTextures, GroundChunks
 from render.shaders import load_program
 from render.uniforms import SINK_UNIT, FrameUniforms
 
@@ -27,6 +28,79 @@ def grid_mesh(nu: int, nv: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     return verts, quads.astype(np.uint32).ravel()
 
 
+def chunked_mesh(nu: int, nv: int, chunks: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """grid_mesh(nu, nv) in chunks × chunks chunks (rows along v), each with vertices of its
+    own (llvmpipe shades every vertex between a draw's lowest and highest index) and one run
+    of the indices: its triangles, then its skirts, along each of its edges inside the grid a
+    strip down from the edge to a copy of its vertices that the shader lowers (in_drop 1).
+    Vertices (u, v, drop); indices; each chunk's (first index, count), (chunks, chunks, 2)."""
+    cu, cv = nu // chunks, nv // chunks
+    # a chunk's own grid of (cu + 1) × (cv + 1) vertices, and its quads' corners in it
+    ii, jj = np.meshgrid(np.arange(cu + 1), np.arange(cv + 1), indexing="xy")
+    q = (np.arange(cv)[:, None] * (cu + 1) + np.arange(cu)[None, :]).ravel()
+    quads = np.stack([q, q + 1, q + cu + 1, q + 1, q + cu + 2, q + cu + 1], -1).ravel()
+    below = (cu + 1) * (cv + 1)  # a vertex's lowered copy
+    edges = {  # the chunk's vertices along each of its edges, in order
+        "low_v": np.arange(cu + 1),
+        "high_v": cv * (cu + 1) + np.arange(cu + 1),
+        "low_u": np.arange(cv + 1) * (cu + 1),
+        "high_u": np.arange(cv + 1) * (cu + 1) + cu,
+    }
+    verts, runs, ranges = [], [], np.zeros((chunks, chunks, 2), np.int64)
+    first = base = 0
+    for b in range(chunks):
+        for a in range(chunks):
+            u = ((a * cu + ii) / nu).ravel().astype(np.float32)
+            v = ((b * cv + jj) / nv).ravel().astype(np.float32)
+            top = np.stack([u, v, np.zeros_like(u)], axis=1)
+            verts += [top, top + np.array([0, 0, 1], np.float32)]
+            inner = {"low_v": b > 0, "high_v": b < chunks - 1, "low_u": a > 0,
+                     "high_u": a < chunks - 1}  # fmt: skip
+            tris = [quads]
+            for name, line in edges.items():
+                if inner[name]:
+                    p0, p1 = line[:-1], line[1:]
+                    tris.append(
+                        np.stack([p0, p1, p1 + below, p0, p1 + below, p0 + below], -1).ravel()
+                    )
+            run = (np.concatenate(tris) + base).astype(np.uint32)
+            ranges[b, a] = (first, run.size)
+            first += run.size
+            base += 2 * below
+            runs.append(run)
+    return np.concatenate(verts), np.concatenate(runs), ranges
+
+
+def chunk_levels(
+    chunks: GroundChunks, box: tuple[np.ndarray, np.ndarray, np.ndarray], frame: FrameUniforms
+) -> np.ndarray:
+    """Per chunk (rows along v), the level to draw it at: the coarsest that moves its ground
+    by under half a pixel seen from the eye at its nearest point (never less than the finest
+    already does); -1 where it lies outside the view. `box`: its lowest corner (x, y, z), its
+    highest, in world units, each (chunks, chunks, 3)."""
+    lo, hi, deviation = box[0], box[1], box[2]
+    eye = np.asarray(frame.eye, np.float64)
+    gap = np.maximum(np.maximum(lo - eye, eye - hi), 0.0)
+    pixel = 2.0 * np.tan(np.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
+    allowed = np.maximum(0.5 * pixel * np.linalg.norm(gap, axis=-1), deviation[0])
+    level = np.zeros(allowed.shape, np.int64)
+    for k in range(1, deviation.shape[0]):
+        level[deviation[k] <= allowed] = k
+    # outside the view: every corner of its box beyond one plane of the clip volume
+    corners = np.stack(
+        [np.stack([xs, ys, zs], -1) for xs in (lo[..., 0], hi[..., 0])
+         for ys in (lo[..., 1], hi[..., 1]) for zs in (lo[..., 2], hi[..., 2])], axis=-2
+    )  # fmt: skip
+    clip = (
+        np.concatenate([corners, np.ones((*corners.shape[:-1], 1))], -1)
+        @ np.asarray(frame.view_proj, np.float64).T
+    )
+    w = clip[..., 3:4]
+    outside = np.concatenate([clip[..., :3] > w, clip[..., :3] < -w], -1).all(axis=-2).any(-1)
+    level[outside] = -1
+    return level
+
+
 class GroundRenderer:
     extent = 2000.0
 
@@ -36,36 +110,68 @@ class GroundRenderer:
         corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype=np.float32)
         self.vbo = ctx.buffer(corners.tobytes())
         self.vao = ctx.vertex_array(self.program, [(self.vbo, "2f", "in_corner")])
-        # the grid over the grassed cells: one quad per height-map texel (core/heights.py
-        # mesh_size), made when the map's size is first seen
-        self.mesh_quads: tuple[int, int] | None = None
-        self.mesh_vbo: moderngl.Buffer | None = None
-        self.mesh_ibo: moderngl.Buffer | None = None
-        self.mesh_vao: moderngl.VertexArray | None = None
+        # the grid over the grassed cells at each of its levels (core/heights.py mesh_levels),
+        # in chunks: quads, vertex array and its buffers, each chunk's run of indices
+        self.meshes: dict[tuple[int, int], tuple[moderngl.VertexArray, list, np.ndarray]] = {}
+        self.chunks_drawn: np.ndarray | None = None  # each chunk's level last frame (-1: none)
         self.grass_rect = (0.0, 0.0, 0.0, 0.0)
         # the soil under the grass, shaded by it (diagnostics draw it black to see the grass)
         self.under_grass = tuple(0.55 * c for c in (0.30, 0.30, 0.12))
 
-    def _mesh(self, quads: tuple[int, int]) -> moderngl.VertexArray:
-        if quads != self.mesh_quads or self.mesh_vao is None:
-            self._release_mesh()
-            verts, indices = grid_mesh(*quads)
-            self.mesh_vbo = self.ctx.buffer(verts.tobytes())
-            self.mesh_ibo = self.ctx.buffer(indices.tobytes())
-            self.mesh_vao = self.ctx.vertex_array(
+    def _mesh(self, quads: tuple[int, int]) -> tuple[moderngl.VertexArray, np.ndarray]:
+        if quads not in self.meshes:
+            verts, indices, ranges = chunked_mesh(*quads, GROUND_CHUNKS)
+            vbo = self.ctx.buffer(verts.tobytes())
+            ibo = self.ctx.buffer(indices.tobytes())
+            vao = self.ctx.vertex_array(
                 self.program,
-                [(self.mesh_vbo, "2f", "in_corner")],
-                index_buffer=self.mesh_ibo,
+                [(vbo, "2f 1f", "in_corner", "in_drop")],
+                index_buffer=ibo,
                 index_element_size=4,
             )
-            self.mesh_quads = quads
-        return self.mesh_vao
+            self.meshes[quads] = (vao, [vbo, ibo], ranges)
+        vao, _, ranges = self.meshes[quads]
+        return vao, ranges
 
     def _release_mesh(self) -> None:
-        for obj in (self.mesh_vao, self.mesh_vbo, self.mesh_ibo):
-            if obj is not None:
-                obj.release()
-        self.mesh_vao = self.mesh_vbo = self.mesh_ibo = None
+        for vao, buffers, _ in self.meshes.values():
+            vao.release()
+            for buffer in buffers:
+                buffer.release()
+        self.meshes.clear()
+
+    def _draw_mesh(self, frame: FrameUniforms, maps: DesignMapTextures) -> None:
+        """The grid over the grassed cells, each chunk at its level (chunk_levels)."""
+        p = self.program
+        sinks, levels, chunks = maps.ground_levels()
+        scale = frame.height_scale
+        x0, z0, x1, z1 = self.grass_rect
+        c = GROUND_CHUNKS
+        xs, zs = np.linspace(x0, x1, c + 1), np.linspace(z0, z1, c + 1)
+        margin = scale * chunks.deviation.max(axis=0)
+        lo = np.stack(
+            np.broadcast_arrays(xs[None, :-1], scale * chunks.low - margin, zs[:-1, None]), -1
+        )
+        hi = np.stack(np.broadcast_arrays(xs[None, 1:], scale * chunks.high, zs[1:, None]), -1)
+        drawn = chunk_levels(chunks, (lo, hi, scale * chunks.deviation), frame)
+        self.chunks_drawn = drawn
+        # a crack between two chunks is at most both levels' deviations wide
+        p["u_skirt"].value = 2.0 * float(scale * chunks.deviation.max()) + 1e-3
+        p["u_mesh"].value = 1.0
+        p["u_sink_map"].value = SINK_UNIT
+        for k, (texture, quads) in enumerate(zip(sinks, levels, strict=True)):
+            mine = np.flatnonzero(drawn.ravel() == k)
+            if mine.size == 0:
+                continue
+            texture.use(SINK_UNIT)
+            vao, ranges = self._mesh(quads)
+            firsts, counts = ranges.reshape(-1, 2)[mine].T
+            # chunks next to each other in the index buffer are drawn in one call
+            breaks = np.flatnonzero(firsts[1:] != firsts[:-1] + counts[:-1]) + 1
+            for run in np.split(np.arange(mine.size), breaks):
+                first, last = run[0], run[-1]
+                total = int(firsts[last] + counts[last] - firsts[first])
+                vao.render(moderngl.TRIANGLES, vertices=total, first=int(firsts[first]))
 
     def draw(self, frame: FrameUniforms, maps: DesignMapTextures | None = None) -> None:
         """The plane, and on uneven ground (with `maps`) the grid over the grassed cells, each
@@ -89,11 +195,7 @@ class GroundRenderer:
         p["u_sink"].value = 0.02 if uneven else 0.0
         self.vao.render(moderngl.TRIANGLE_STRIP)
         if uneven and maps is not None:
-            sink, quads = maps.mesh_sink()
-            sink.use(SINK_UNIT)
-            p["u_mesh"].value = 1.0
-            p["u_sink_map"].value = SINK_UNIT
-            self._mesh(quads).render(moderngl.TRIANGLES)
+            self._draw_mesh(frame, maps)
         self.ctx.polygon_offset = (0.0, 0.0)
 
     def release(self) -> None:

@@ -14,8 +14,12 @@ uniform float u_sink;          // how far the surrounding plane lies below y = 0
 // per vertex of the grid, how far it sinks so that its triangles, chords of the height map's
 // surface, lie on or under the ground the grass stands on (core/heights.py mesh_sink)
 uniform sampler2D u_sink_map;
+// how far a chunk's skirt hangs below its edge (render/ground.py): it closes the cracks between
+// chunks drawn at different levels
+uniform float u_skirt;
 
 in vec2 in_corner;             // -1 … 1 (the plane) or 0 … 1 (the grid over the cells)
+in float in_drop;              // 1 on a skirt's lower edge, else 0
 out vec3 v_world;
 
 void main() {
@@ -23,7 +27,7 @@ void main() {
         vec2 p = mix(u_grass_rect.xy, u_grass_rect.zw, in_corner);
         ivec2 vertex = ivec2(round(in_corner * vec2(textureSize(u_sink_map, 0) - 1)));
         float sink = texelFetch(u_sink_map, vertex, 0).r;
-        v_world = vec3(p.x, ground_height(in_corner) - u_height_scale * sink, p.y);
+        v_world = vec3(p.x, ground_height(in_corner) - u_height_scale * sink - in_drop * u_skirt, p.y);
     } else {
         v_world = vec3(in_corner.x * u_extent, -u_sink, in_corner.y * u_extent);
     }

@@ -230,3 +230,20 @@ def test_cell_curvature_is_the_ground_s_bound_cell_by_cell():
     assert np.all(own <= worst) and own.sum() < worst.sum()
     flat = cell_curvature(np.full((16, 16), 0.5, np.float32), 3.0, 8, 8)
     assert np.all(flat == 0.0)
+
+
+def test_ground_mesh_levels_halve_in_whole_chunks_and_each_is_sunk_on_its_own():
+    from core.heights import GROUND_CHUNKS, chunk_deviation, mesh_levels
+
+    assert mesh_levels((256, 200)) == [(256, 200), (128, 96), (64, 48), (32, 24)]
+    assert mesh_levels((8, 8)) == [(8, 8)]  # a quad a chunk: nothing to merge
+    assert all(q % GROUND_CHUNKS == 0 for level in mesh_levels((50, 37)) for q in level)
+    heights = hills(64, seed=3)
+    levels = mesh_levels(heights.shape[::-1])
+    sinks = [mesh_sink(heights, q)[0] for q in levels]
+    deviation = chunk_deviation(heights, levels, sinks)
+    assert deviation.shape == (len(levels), GROUND_CHUNKS, GROUND_CHUNKS)
+    # the finest moves by its own sink only; a coarser level by more, somewhere
+    own = sinks[0][:-1, :-1].reshape(8, 8, 8, 8).max(axis=(1, 3))
+    assert np.all(deviation[0] >= own - 1e-7)
+    assert np.all(deviation[1:] >= deviation[0] - 1e-7) and deviation[-1].max() > deviation[0].max()

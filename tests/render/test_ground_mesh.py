@@ -69,3 +69,75 @@ def test_a_height_stroke_redoes_the_sink_of_the_rows_it_reaches(ctx):
         assert np.array_equal(drawn, expected)
     finally:
         textures.release()
+
+
+def test_chunked_mesh_is_the_grid_with_skirts_along_inner_chunk_edges():
+    from render.ground import chunked_mesh, grid_mesh
+
+    verts, indices, ranges = chunked_mesh(12, 8, 4)
+    grid_verts, grid_indices = grid_mesh(12, 8)
+
+    def triangles(v, i):
+        corners = np.round(v.astype(np.float64) * 1e4).astype(np.int64)
+        return {tuple(map(tuple, corners[t].tolist())) for t in i.reshape(-1, 3)}
+
+    drawn = triangles(verts, indices)
+    grid = triangles(np.c_[grid_verts, np.zeros(len(grid_verts))], grid_indices)
+    assert grid <= drawn
+    skirts = drawn - grid
+    # 2 triangles a quad edge along each inner chunk line (3 lines of 12 quads across v, 3 of
+    # 8 across u), drawn from both sides of the line
+    assert len(skirts) == 2 * (3 * 12 + 3 * 8)
+    assert indices.size // 3 == len(grid_indices) // 3 + 2 * len(skirts)
+    assert all(any(c[2] == 10_000 for c in t) for t in skirts)  # each hangs down
+    # each chunk's run of indices follows the one before; each reaches only its own vertices
+    flat = ranges.reshape(-1, 2)
+    assert np.array_equal(flat[1:, 0], np.cumsum(flat[:-1, 1]))
+    for first, count in flat:
+        run = indices[first : first + count]
+        assert run.max() - run.min() < len(verts) // 8
+
+
+# gentler hills over a finer map: far away its mesh's chunks may be coarser
+GENTLE = dataclasses.replace(
+    SCENE,
+    height_map=lambda w, h: hills(256, seed=11, period=2)[:h, :w],
+    height_scale=3.0,
+    map_size=(256, 256),
+)
+
+
+def _ground_only(headless, forced=None, monkeypatch=None):
+    """The hills of GENTLE without grass (density 0), each chunk at its level or at `forced`."""
+    import render.ground
+
+    if forced is not None:
+        levels = render.ground.chunk_levels
+
+        def fixed(chunks, box, frame):
+            drawn = levels(chunks, box, frame)
+            return np.where(drawn < 0, drawn, forced)
+
+        monkeypatch.setattr(render.ground, "chunk_levels", fixed)
+    doc = GENTLE.document()
+    doc.density = 0.0
+    renderer = headless(doc, mode="lod")
+    camera = Camera.from_eye_target((0.0, 14.0, 44.0), (0.0, 2.0, -20.0), fov_y=50.0)
+    image, _ = renderer.render(camera, (320, 240))
+    return image.astype(np.float32) / 255.0, renderer.pipeline.ground.chunks_drawn
+
+
+def test_ground_chunks_coarsen_far_away_and_show_the_finest_level_s_ground(headless, monkeypatch):
+    """Far chunks take coarser levels (their triangles a few pixels each on the finest), the
+    chunks behind the eye none; the ground moves by under a pixel and shows no cracks between
+    chunks of different levels (the skirts)."""
+    from core.heights import mesh_levels
+
+    assert len(mesh_levels(GENTLE.map_size)) > 1
+    lod, drawn = _ground_only(headless)
+    finest, _ = _ground_only(headless, forced=0, monkeypatch=monkeypatch)
+    levels = drawn[drawn >= 0]
+    assert levels.max() > 0 and levels.min() < levels.max()  # nearer chunks finer than far ones
+    moved = np.abs(lod - finest).max(axis=-1)
+    assert moved.mean() < 0.003
+    assert (moved > 0.1).mean() < 0.002  # a crack would show the sky or the plane below
