@@ -22,10 +22,14 @@ vec4 design_color_at(vec2 uv, vec2 dx, vec2 dy) {
     vec2 major = x_long ? dx : dy;
     vec2 minor = x_long ? dy : dx;
     int taps = int(clamp(ceil(length(major) / max(length(minor), 1e-9)), 1.0, float(DESIGN_TAPS)));
+    // every tap's footprint is major / taps by minor: one mip level for all of them, as
+    // textureGrad would take it from those sides (the longer one's texels)
+    vec2 size = vec2(textureSize(u_design_far, 0).xy);
+    float lod = log2(max(max(length(major * size) / float(taps), length(minor * size)), 1e-9));
     vec4 c = vec4(0.0);
     for (int k = 0; k < taps; ++k) {
         vec2 at = uv + major * ((float(k) + 0.5) / float(taps) - 0.5);
-        c += textureGrad(u_design_far, vec3(at, 0.0), major / float(taps), minor);
+        c += textureLod(u_design_far, vec3(at, 0.0), lod);
     }
     c /= float(taps);
     return vec4(c.rgb / max(c.a, 1e-4), c.a);
