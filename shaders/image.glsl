@@ -9,6 +9,18 @@
 #include "_wind.glsl"
 #include "_coverage.glsl"
 
+// what a view from each elevation of the table meets (core/canopy.py: θ_j = 90° ((j + ½) / 8)²):
+// colour and height; and the top view's mean colour
+uniform vec3 u_level_colors[8];
+// over another type's grass (u_under), per elevation of the same table (render/image.py,
+// core/canopy.py Canopy.over): the colour these blades show a ray above the grass beneath
+uniform vec3 u_over_colors[8];
+// per elevation of the same table, the mean of 1 − smoothstep(0, B_height, y) over the heights
+// y the view meets (core/canopy.py Canopy.shade_met): AO_blade of what it meets
+uniform float u_level_shade[8];
+uniform float u_over_shade[8];  // the same over another type's grass (u_under)
+uniform vec3 u_eye;
+
 #if defined VERTEX_SHADER
 
 uniform mat4 u_view_proj;
@@ -25,6 +37,16 @@ in vec4 in_config;             // per instance: config transform into the design
 out vec2 v_patch;              // patch-space x, z (repeats across a macro-cell)
 out vec3 v_world;
 out vec2 v_design;             // design-map uv
+// The terms that follow the direction to the eye and the ground's slant, taken at the vertices
+// and interpolated over the grid's quads, over which they change little (a fragment's every
+// instruction is what the pass costs on a CPU renderer): (tan θ of the view over the ground,
+// the top view's share of the run, the slope's ratio of light, the blades' mean diffuse
+// factor seen from here in still air), and what the view meets of the blades at θ: colour
+// and AO_blade, over the ground and over another type's grass.
+out vec4 v_view;
+out vec3 v_met;
+out vec3 v_met_over;
+out vec2 v_shade;
 flat out float v_density;
 flat out vec2 v_lod;
 flat out vec2 v_size;
@@ -44,6 +66,42 @@ void main() {
     vec3 world = vec3(in_origin.x + v_patch.x, u_lift + ground, in_origin.y + v_patch.y);
     v_world = world;
     gl_Position = u_view_proj * vec4(world, 1.0);
+    // The blades a ray meets (Campbell's ellipsoidal leaf-angle model), by the elevation θ of
+    // the ray over the grass layer: upright blades on ground that rises towards the eye are
+    // crossed over a shorter run than on flat ground, and a ray descending at tan e over a
+    // rise of gradient g along it meets the ground after h / (tan e + g), so tan θ = tan e + g
+    // = (u · n) / (n_y |u_xz|), n the ground's normal (from the height map's slope here); the
+    // smaller of the elevations over the ground and over the horizon, taken before, covered
+    // the DEM's hillsides that face the eye 10 % more than the blades: scripts/region_views.py.
+    vec2 texel = 1.0 / vec2(textureSize(u_design, 0).xy);
+    vec2 gradient = vec2(
+        ground_height(v_design + vec2(texel.x, 0.0)) - ground_height(v_design - vec2(texel.x, 0.0)),
+        ground_height(v_design + vec2(0.0, texel.y)) - ground_height(v_design - vec2(0.0, texel.y)))
+        * in_config.zw / (2.0 * texel);
+    vec3 ground_up = normalize(vec3(-gradient.x, 1.0, -gradient.y));
+    vec3 u = normalize(u_eye - world);
+    float theta = atan(max(dot(u, ground_up), 0.0), max(ground_up.y * length(u.xz), 1e-4));
+    float across = rise_across(u, gradient);  // the slope's other part
+    float sin_up = max(sin(theta), 0.02);
+    // the table's row for this elevation over the ground (θ_j = 90° ((j + ½) / 8)²)
+    float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
+    int i = int(floor(row));
+    int j = min(i + 1, 7);
+    float tan_up = sin_up / max(sqrt(1.0 - sin_up * sin_up), 1e-3);
+    // The blades stand upright on sloping ground: a ray crosses their layer (of a height h
+    // over the ground) over a run h n_y / (u · n), and meets their area from above over its
+    // vertical part, h n_y u_y / (u · n): the top view's depth times n_y u_y / (u · n) (1 on
+    // flat ground; on a slope facing the eye the ray leaves the layer after a short descent).
+    // Its horizontal part, h n_y |u_xz| / (u · n) = h / tan θ, takes the side.
+    float top_run = ground_up.y * max(u.y, 0.0) / max(dot(u, ground_up), 1e-3);
+    // on a slope, upright blades differ from those on flat ground at this elevation over the
+    // ground (slope_ratio_flat: the DEM's tall grass far away was 10/255 too bright without it)
+    float still = WIND_ON ? 0.0 : max(facing_lambert(u), 0.0);
+    v_view = vec4(tan_up, top_run, slope_ratio_flat(u, theta, across), still);
+    float f = row - float(i);
+    v_met = mix(u_level_colors[i], u_level_colors[j], f);
+    v_met_over = mix(u_over_colors[i], u_over_colors[j], f);
+    v_shade = vec2(mix(u_level_shade[i], u_level_shade[j], f), mix(u_over_shade[i], u_over_shade[j], f));
 }
 
 #elif defined FRAGMENT_SHADER
@@ -53,31 +111,24 @@ uniform sampler2D u_top_data;  // normal, threshold
 uniform float u_top_spread[SPREAD_LEVELS];
 uniform vec3 u_mean_normal;    // the top view's normal averaged over the patch (same encoding)
 uniform vec4 u_under;          // 1 for each density channel whose grass lies beneath this one
-// what a view from each elevation of the table meets (core/canopy.py: θ_j = 90° ((j + ½) / 8)²):
-// colour and height; and the top view's mean colour
-uniform vec3 u_level_colors[8];
-// over another type's grass (u_under), per elevation of the same table (render/image.py,
-// core/canopy.py Canopy.over): the colour these blades show a ray above the grass beneath
-uniform vec3 u_over_colors[8];
 // the optical depths of the blades (core/canopy.py side_column): seen from straight above (the
 // top view's mean alpha, −ln(1 − a)), and of a level ray per patch length summed up the rows:
 // all of them, and those above the grass beneath (u_under)
 uniform float u_top_depth;
 uniform float u_side_column;
 uniform float u_over_column;
-// per elevation of the same table, the mean of 1 − smoothstep(0, B_height, y) over the heights
-// y the view meets (core/canopy.py Canopy.shade_met): AO_blade of what it meets
-uniform float u_level_shade[8];
-uniform float u_over_shade[8];  // the same over another type's grass (u_under)
 uniform vec3 u_top_mean;
 uniform float u_density;
-uniform vec3 u_eye;
 uniform float u_grass_height;  // the grass type's tallest blade (the slices' height)
 uniform float u_canopy;        // the slice's height, a fraction of u_grass_height (render/image.py)
 
 in vec2 v_patch;
 in vec3 v_world;
 in vec2 v_design;
+in vec4 v_view;
+in vec3 v_met;
+in vec3 v_met_over;
+in vec2 v_shade;
 flat in float v_density;
 flat in vec2 v_lod;
 flat in vec2 v_size;
@@ -114,34 +165,12 @@ void main() {
     // lower, only the rows above that grass, for a ray passing between these blades meets it);
     // between, the two are the axes of an ellipse: τ(θ) = √(τ_top² + (column / tan θ)²). For
     // randomly turned blades the two agree and this is τ_top / sin θ; upright blades show
-    // nothing from above (a vertical ribbon has no area there) and are all side.
-    // (the elevation θ of the ray over the grass layer: upright blades on ground that rises
-    // towards the eye are crossed over a shorter run than on flat ground, and a ray descending
-    // at tan e over a rise of gradient g along it meets the ground after h / (tan e + g), so
-    // tan θ = tan e + g = (u · n) / (n_y |u_xz|) with n the ground's normal; the smaller of the
-    // elevations over the ground and over the horizon, taken before, covered the DEM's
-    // hillsides that face the eye 10 % more than the blades: scripts/region_views.py)
-    vec3 ground_up = normalize(cross(dFdy(v_world), dFdx(v_world)));
-    if (ground_up.y < 0.0) ground_up = -ground_up;
-    vec3 u = normalize(u_eye - v_world);
-    float theta = atan(max(dot(u, ground_up), 0.0), max(ground_up.y * length(u.xz), 1e-4));
-    float across = rise_across(u, -ground_up.xz / max(ground_up.y, 1e-3));  // the slope's other part
-    float sin_up = max(sin(theta), 0.02);
+    // nothing from above (a vertical ribbon has no area there) and are all side. (θ, the
+    // top view's share of the run: the vertex stage.)
     float under = clamp(dot(textureLod(u_design, vec3(v_design, 0.0), 0.0), u_under), 0.0, 1.0);
-    // the table's row for this elevation over the ground (θ_j = 90° ((j + ½) / 8)²)
-    float row = clamp(sqrt(asin(sin_up) * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
-    int i = int(floor(row));
-    int j = min(i + 1, 7);
     bool top_seen = u_top_depth > 1e-3;  // a top view with something in it
-    float tan_up = sin_up / max(sqrt(1.0 - sin_up * sin_up), 1e-3);
-    // The blades stand upright on sloping ground: a ray crosses their layer (of a height h
-    // over the ground) over a run h n_y / (u · n), and meets their area from above over its
-    // vertical part, h n_y u_y / (u · n): the top view's depth times n_y u_y / (u · n) (1 on
-    // flat ground; on a slope facing the eye the ray leaves the layer after a short descent).
-    // Its horizontal part, h n_y |u_xz| / (u · n) = h / tan θ, takes the side, as above.
-    float top_run = ground_up.y * max(u.y, 0.0) / max(dot(u, ground_up), 1e-3);
-    float tau_top = -log(max(1.0 - c.a, 1e-4)) * top_run;
-    float tau_side = mix(u_side_column, u_over_column, under) / tan_up;
+    float tau_top = -log(max(1.0 - c.a, 1e-4)) * v_view.y;
+    float tau_side = mix(u_side_column, u_over_column, under) / v_view.x;
     float tau = sqrt(tau_top * tau_top + tau_side * tau_side);
     c.a = 1.0 - exp(-tau);
     // without a top view, the thresholds under a texel are all the blades': uniform
@@ -161,25 +190,21 @@ void main() {
     // which a lower view does not reach: the colour is what a view from this elevation meets of
     // the blades, from the side and from above (core/canopy.py), varied texel by texel as the
     // top view's colour varies about its mean.
-    vec3 met = mix(mix(u_level_colors[i], u_level_colors[j], row - float(i)),
-                   mix(u_over_colors[i], u_over_colors[j], row - float(i)), under);
+    vec3 met = mix(v_met, v_met_over, under);
     vec3 seen = top_seen ? c.rgb * (met / max(u_top_mean, vec3(1e-3))) : met;
     vec3 albedo = modulate(seen, design_color_at(v_design, design_dx, design_dy));
     // The blades' mean diffuse factor from this side (core/facing.py), varied texel by texel as
-    // the slice's own normal varies about the patch's mean normal; on a slope, as the upright
-    // blades there differ from those on flat ground at this elevation over the ground
-    // (slope_ratio_flat: the DEM's tall grass far away was 10/255 too bright without it).
-    // Under the wind the blades' light follows their bend (facing_leaned), and the texel's
+    // the slice's own normal varies about the patch's mean normal; on a slope, by the vertex
+    // stage's ratio. Under the wind the blades' light follows their bend (facing_leaned), and the texel's
     // normal turns with their curve at the height the top view shows (wind_axis).
     vec3 axis = wind_axis(shear, u_canopy * shear.top);
     const vec3 UP = vec3(0.0, 1.0, 0.0);
     float detail = top_seen ? lambert_through(turn(n, UP, axis))
                               / max(lambert_through(turn(u_mean_normal, UP, axis)), 0.05) : 1.0;
-    float l = facing_leaned(facing_entry(to_eye), lean) * clamp(detail, 0.25, 2.0)
-            * slope_ratio_flat(to_eye, theta, across);
+    float facing = WIND_ON ? facing_leaned(facing_entry(to_eye), lean) : v_view.w;
+    float l = facing * clamp(detail, 0.25, 2.0) * v_view.z;
     // AO_blade (eq. 6.11) of what the view meets of the blades
-    float shade = mix(mix(u_level_shade[i], u_level_shade[j], row - float(i)),
-                      mix(u_over_shade[i], u_over_shade[j], row - float(i)), under);
+    float shade = mix(v_shade.x, v_shade.y, under);
     float ao = 1.0 - u_ao_impact * clamp(density, 0.0, 1.0) * shade;
     vec3 lit = shade_l(albedo, l, ao, design_ambient(v_design), design_diffuse(v_design));
     f_color = vec4(technique(wind_view(lit, lean)), c.a);
