@@ -155,8 +155,11 @@ void main() {
     vec2 uv = vec2(p.x, 1.0 - p.y);
     vec2 duv_x = dFdx(v_patch), duv_y = dFdy(v_patch);
     vec2 design_dx = dFdx(v_design), design_dy = dFdy(v_design);  // the footprint on the maps
-    vec4 c = textureGrad(u_top_color, uv, duv_x, duv_y);
-    vec4 data = textureGrad(u_top_data, uv, duv_x, duv_y);
+    // the mip level the footprint takes (as textureGrad would), once for both textures
+    vec2 size = vec2(textureSize(u_top_color, 0));
+    float lod = max(log2(max(length(duv_x * size), length(duv_y * size))), 0.0);
+    vec4 c = textureLod(u_top_color, uv, lod);
+    vec4 data = textureLod(u_top_data, uv, lod);
     float density = u_density * v_density * design_density(v_design);
     // The blades a ray meets (Campbell's ellipsoidal leaf-angle model). From straight above
     // they are what the top view covers, depth τ_top = −ln(1 − a); from the side, the blades'
@@ -175,8 +178,6 @@ void main() {
     c.a = 1.0 - exp(-tau);
     // without a top view, the thresholds under a texel are all the blades': uniform
     float threshold = top_seen ? data.a : 0.5;
-    vec2 size = vec2(textureSize(u_top_color, 0));
-    float lod = max(log2(max(length(duv_x * size), length(duv_y * size))), 0.0);
     // of the blades under the texel, the share kept; alpha-to-coverage draws that share
     c.a *= lod_share(threshold, top_seen ? level_value(u_top_spread, lod) : 0.28867513, density,
                      lod_at(v_lod, distance(u_eye.xz, v_world.xz), v_size));
