@@ -32,7 +32,8 @@ def chunked_mesh(nu: int, nv: int, chunks: int) -> tuple[np.ndarray, np.ndarray,
     """grid_mesh(nu, nv) in chunks × chunks chunks (rows along v), each with vertices of its
     own (llvmpipe shades every vertex between a draw's lowest and highest index) and one run
     of the indices: its triangles, then its skirts, along each of its edges inside the grid a
-    strip down from the edge to a copy of its vertices that the shader lowers (in_drop 1).
+    strip down from the edge to a copy of its vertices that the shader lowers (in_drop 1; 0 on
+    the grid's outer border, where a skirt's end would show below the terrain's edge).
     Vertices (u, v, drop); indices; each chunk's (first index, count), (chunks, chunks, 2)."""
     cu, cv = nu // chunks, nv // chunks
     # a chunk's own grid of (cu + 1) × (cv + 1) vertices, and its quads' corners in it
@@ -53,7 +54,9 @@ def chunked_mesh(nu: int, nv: int, chunks: int) -> tuple[np.ndarray, np.ndarray,
             u = ((a * cu + ii) / nu).ravel().astype(np.float32)
             v = ((b * cv + jj) / nv).ravel().astype(np.float32)
             top = np.stack([u, v, np.zeros_like(u)], axis=1)
-            verts += [top, top + np.array([0, 0, 1], np.float32)]
+            # a skirt ends on the terrain's outer border (seen from outside, it hung below it)
+            inside = (u > 0.0) & (u < 1.0) & (v > 0.0) & (v < 1.0)
+            verts += [top, top + np.c_[np.zeros((u.size, 2), np.float32), inside]]
             inner = {"low_v": b > 0, "high_v": b < chunks - 1, "low_u": a > 0,
                      "high_u": a < chunks - 1}  # fmt: skip
             tris = [quads]
