@@ -22,7 +22,7 @@ import moderngl
 import numpy as np
 
 from core.design_maps import LAYER_INDEX, DesignMaps, Rect, union
-from core.heights import (
+from core.ground_mesh import (
     chunk_deviation,
     mesh_heights,
     mesh_levels,
@@ -39,9 +39,9 @@ COLOR = LAYER_INDEX["color"]
 
 @dataclass(frozen=True)
 class GroundChunks:
-    """The ground mesh's chunks (core/heights.py GROUND_CHUNKS per side, rows along v), in
+    """The ground mesh's chunks (core/ground_mesh.py GROUND_CHUNKS per side, rows along v), in
     height-map units: how far drawing each at each level moves its ground at most (core/
-    heights.py chunk_deviation), and the lowest and highest its finest level reaches."""
+    ground_mesh.py chunk_deviation), and the lowest and highest its finest level reaches."""
 
     deviation: np.ndarray  # (levels, chunks along v, chunks along u)
     low: np.ndarray  # (chunks along v, chunks along u)
@@ -84,8 +84,8 @@ class DesignMapTextures:
         self.uploaded_texels = w * h * layers  # for tests and the profiler: what went to the GPU
         self.pending: dict[int, Rect] = {}  # layer index -> dirty rectangle not yet uploaded
         self.grounds: dict[int, moderngl.Texture] = {}  # density channel -> (height, density)
-        # the ground mesh's levels (core/heights.py mesh_levels): each one's sink per vertex,
-        # its per-quad excess (core/heights.py), and what each chunk moves by at each level
+        # the ground mesh's levels (core/ground_mesh.py mesh_levels): each one's sink per vertex,
+        # its per-quad excess (core/ground_mesh.py), and what each chunk moves by at each level
         self._sinks: list[moderngl.Texture] = []
         self._excess: list[np.ndarray] = []
         self._chunks: GroundChunks | None = None
@@ -128,8 +128,8 @@ class DesignMapTextures:
         return textures[0], levels[0]
 
     def ground_levels(self) -> tuple[list[moderngl.Texture], list[tuple[int, int]], GroundChunks]:
-        """Per level of the ground mesh (core/heights.py mesh_levels), how far each vertex
-        sinks to lie under the grass's ground (core/heights.py mesh_sink), and its quads per
+        """Per level of the ground mesh (core/ground_mesh.py mesh_levels), how far each vertex
+        sinks to lie under the grass's ground (core/ground_mesh.py mesh_sink), and its quads per
         side; and its chunks' extents. Made at first use, the rows an edit reaches redone when
         heights change; kept between runs by the heights they are of (render/
         derived_cache.py)."""

@@ -6,7 +6,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
-from core.heights import GROUND_CHUNKS
+from core.ground_mesh import GROUND_CHUNKS
 from render.design_maps import DesignMapTextures, GroundChunks
 from render.shaders import load_program
 from render.uniforms import SINK_UNIT, FrameUniforms
@@ -14,7 +14,7 @@ from render.uniforms import SINK_UNIT, FrameUniforms
 
 def grid_mesh(nu: int, nv: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Vertices (0 … 1)² and triangle indices of an nu × nv grid (nv = nu if not given), each
-    quad split from its (u + 1, v) corner to its (u, v + 1) corner (core/heights.py mesh_sink
+    quad split from its (u + 1, v) corner to its (u, v + 1) corner (core/ground_mesh.py mesh_sink
     assumes this split)."""
     nv = nu if nv is None else nv
     u, v = np.meshgrid(
@@ -113,7 +113,7 @@ class GroundRenderer:
         corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype=np.float32)
         self.vbo = ctx.buffer(corners.tobytes())
         self.vao = ctx.vertex_array(self.program, [(self.vbo, "2f", "in_corner")])
-        # the grid over the grassed cells at each of its levels (core/heights.py mesh_levels),
+        # the grid over the grassed cells at each of its levels (core/ground_mesh.py mesh_levels),
         # in chunks: quads, vertex array and its buffers, each chunk's run of indices
         self.meshes: dict[tuple[int, int], tuple[moderngl.VertexArray, list, np.ndarray]] = {}
         self.chunks_drawn: np.ndarray | None = None  # each chunk's level last frame (-1: none)

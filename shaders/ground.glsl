@@ -12,7 +12,7 @@ uniform vec4 u_grass_rect;     // xmin, zmin, xmax, zmax of the grassed cells
 uniform float u_mesh;          // 1: this is the grid over the grassed cells, following the heights
 uniform float u_sink;          // how far the surrounding plane lies below y = 0
 // per vertex of the grid, how far it sinks so that its triangles, chords of the height map's
-// surface, lie on or under the ground the grass stands on (core/heights.py mesh_sink)
+// surface, lie on or under the ground the grass stands on (core/ground_mesh.py mesh_sink)
 uniform sampler2D u_sink_map;
 // how far a chunk's skirt hangs below its edge (render/ground.py): it closes the cracks between
 // chunks drawn at different levels

@@ -3,6 +3,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from core.ground_mesh import mesh_sink, mesh_size, quad_excess, vertex_sink
 from core.heights import (
     SLICE_GRIDS,
     bilinear,
@@ -12,11 +13,7 @@ from core.heights import (
     cell_ranges,
     ground_curvature,
     hills,
-    mesh_sink,
-    mesh_size,
-    quad_excess,
     slice_grids,
-    vertex_sink,
 )
 from core.terrain import Terrain
 
@@ -233,7 +230,7 @@ def test_cell_curvature_is_the_ground_s_bound_cell_by_cell():
 
 
 def test_ground_mesh_levels_halve_in_whole_chunks_and_each_is_sunk_on_its_own():
-    from core.heights import GROUND_CHUNKS, chunk_deviation, mesh_levels
+    from core.ground_mesh import GROUND_CHUNKS, chunk_deviation, mesh_levels
 
     assert mesh_levels((256, 200)) == [(256, 200), (128, 96), (64, 48), (32, 24)]
     assert mesh_levels((8, 8)) == [(8, 8)]  # a quad a chunk: nothing to merge

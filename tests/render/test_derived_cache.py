@@ -176,7 +176,8 @@ def test_a_draft_without_sums_draws_ones_and_refines_once_another_has_built_them
 
 def test_the_ground_sink_is_read_back_for_the_same_heights(ctx, cache, monkeypatch):
     from core.design_maps import DesignMaps
-    from core.heights import hills, mesh_sink
+    from core.ground_mesh import mesh_sink
+    from core.heights import hills
     from render import design_maps
     from render.design_maps import DesignMapTextures
 

@@ -1,6 +1,6 @@
 """The ground mesh under hilly grass (thesis 6.4.4): its triangles are chords of the height
 map's surface, and in hollows a chord rises over the ground the grass stands on and would hide
-the grass (bare patches in the landscape's volume zone). Sunk by core/heights.py mesh_sink,
+the grass (bare patches in the landscape's volume zone). Sunk by core/ground_mesh.py mesh_sink,
 the mesh lies under the grass everywhere."""
 
 import dataclasses
@@ -8,7 +8,7 @@ import dataclasses
 import numpy as np
 
 from app.scenes import get_scene
-from core import heights
+from core import ground_mesh
 from core.camera import Camera
 from core.heights import hills
 from core.lod import LodConfig, LodLevel
@@ -30,7 +30,7 @@ CAMERA = Camera.from_eye_target((0.0, 16.0, 40.0), (0.0, 4.0, 0.0), fov_y=50.0)
 
 def bare_share(headless, monkeypatch, sink: bool) -> float:
     """The share of the frame where the soil under the grass shows (drawn magenta)."""
-    monkeypatch.setattr(heights, "MESH_LIMIT", 8)
+    monkeypatch.setattr(ground_mesh, "MESH_LIMIT", 8)
     renderer = headless(SCENE.document(), mode="volume")
     renderer.pipeline.ground.under_grass = (1.0, 0.0, 1.0)
     if not sink:  # the chords as they are: every vertex on the surface
@@ -52,7 +52,7 @@ def test_sunk_ground_mesh_lets_the_grass_in_hollows_show(headless, monkeypatch):
 
 def test_a_height_stroke_redoes_the_sink_of_the_rows_it_reaches(ctx):
     from core.design_maps import DesignMaps
-    from core.heights import mesh_sink, mesh_size
+    from core.ground_mesh import mesh_sink, mesh_size
     from render.design_maps import DesignMapTextures
 
     maps = DesignMaps(48, 48)
@@ -136,7 +136,7 @@ def test_ground_chunks_coarsen_far_away_and_show_the_finest_level_s_ground(headl
     """Far chunks take coarser levels (their triangles a few pixels each on the finest), the
     chunks behind the eye none; the ground moves by under a pixel and shows no cracks between
     chunks of different levels (the skirts)."""
-    from core.heights import mesh_levels
+    from core.ground_mesh import mesh_levels
 
     assert len(mesh_levels(GENTLE.map_size)) > 1
     lod, drawn = _ground_only(headless)
