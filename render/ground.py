@@ -147,6 +147,10 @@ class GroundRenderer:
         """The grid over the grassed cells, each chunk at its level (chunk_levels)."""
         p = self.program
         sinks, levels, chunks = maps.ground_levels()
+        for quads in [q for q in self.meshes if q not in levels]:  # another map's: let go
+            vao, buffers, _ = self.meshes.pop(quads)
+            for obj in (vao, *buffers):
+                obj.release()
         scale = frame.height_scale
         x0, z0, x1, z1 = self.grass_rect
         c = GROUND_CHUNKS

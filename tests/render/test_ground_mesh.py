@@ -146,3 +146,19 @@ def test_ground_chunks_coarsen_far_away_and_show_the_finest_level_s_ground(headl
     moved = np.abs(lod - finest).max(axis=-1)
     assert moved.mean() < 0.003
     assert (moved > 0.1).mean() < 0.002  # a crack would show the sky or the plane below
+
+
+def test_ground_lets_go_of_another_maps_meshes(headless):
+    """A document whose maps have another size (a project opened in the same render process)
+    draws its own mesh levels; the ground keeps none of the former maps'."""
+    from core.ground_mesh import mesh_levels
+
+    renderer = headless(GENTLE.document(), mode="lod")
+    camera = Camera.from_eye_target((0.0, 14.0, 44.0), (0.0, 2.0, -20.0), fov_y=50.0)
+    renderer.render(camera, (160, 120))
+    ground = renderer.pipeline.ground
+    assert set(ground.meshes) <= set(mesh_levels(GENTLE.map_size))
+    other = SCENE.document()  # 64 × 64 maps against 256 × 256
+    renderer.pipeline.set_design_maps(other.maps)
+    renderer.render(camera, (160, 120))
+    assert ground.meshes and set(ground.meshes) <= set(mesh_levels(SCENE.map_size))
