@@ -107,7 +107,12 @@ class VolumeRenderer(InstancedRenderer):
         p["u_side_colors"].write(np.ascontiguousarray(t.canopy.side_colors, np.float32))
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
-        p["u_floor"].value = -1.0 if self.floor is None else self.floor * float(t.height)
+        # the horizontal slice's height; none in a band pass whose heights leave it out (the
+        # shader would find where its rays cross it only to count nothing there)
+        floor = -1.0 if self.floor is None else self.floor * float(t.height)
+        if not self.band[0] <= floor < min(self.band[1], float(t.height) + 1.0):
+            floor = -1.0
+        p["u_floor"].value = floor
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         if self.floor is not None:  # AO_blade of what the horizontal slice shows
             p["u_floor_shade"].value = t.canopy.top_shade(frame.lighting.blade_ao_height)

@@ -6,6 +6,7 @@ soil showed in rings that follow the slice spacing (landscape `valley`)."""
 import dataclasses
 
 import numpy as np
+import pytest
 
 from app.scenes import get_scene
 from core.camera import Camera
@@ -83,11 +84,20 @@ def test_rays_up_the_landscapes_hill_count_all_the_grass_they_cross(headless):
     assert int((share[50:150] > 0.8).sum()) <= 5
 
 
-def test_band_passes_of_one_type_show_what_its_single_pass_shows(headless, monkeypatch):
+@pytest.mark.parametrize(
+    ("eye", "mean_limit", "block_limit"),
+    [((0.0, 4.0, 30.0), 0.002, 0.01), ((0.0, 16.0, 24.0), 0.007, 0.02)],
+    ids=["low", "steep"],
+)
+def test_band_passes_of_one_type_show_what_its_single_pass_shows(
+    headless, monkeypatch, eye, mean_limit, block_limit
+):
     """A type that grows among another is drawn in passes of a band of heights each (render/
     volume_order.py), each pass's cuboids only as tall as its band's top over the highest
     ground (shaders/volume.glsl): its rays count nothing above it. Split so, a type's grass on
-    hills, where its macro-cells' cuboids are tall, shows what its one pass does."""
+    hills, where its macro-cells' cuboids are tall, shows what its one pass does. Seen from
+    high up the horizontal slice shows: only the band that holds it crosses it (a mean
+    difference of 0.0045 in 0 … 1 there; with the slice dropped from its band too, 0.015)."""
     import render.frame
     from core.heights import hills
     from render.volume_order import INF
@@ -98,7 +108,7 @@ def test_band_passes_of_one_type_show_what_its_single_pass_shows(headless, monke
         height_scale=0.5,  # gentle: the grass is as tall as a macro-cell's ground varies
         lod=LodConfig((LodLevel("volume", 0.0, None, slices=4, macro=4),)),
     )
-    camera = Camera.from_eye_target((0.0, 4.0, 30.0), (0.0, 0.0, 0.0), fov_y=30.0)
+    camera = Camera.from_eye_target(eye, (0.0, 0.0, 0.0), fov_y=30.0)
     renderer = headless(scene.document(), mode="lod")
     whole = to_float(renderer.render(camera, (256, 192))[0])
     height = float(renderer.pipeline.grass_types[0].image.textures.height)
@@ -107,5 +117,5 @@ def test_band_passes_of_one_type_show_what_its_single_pass_shows(headless, monke
     monkeypatch.setattr(render.frame, "stacked_parts", lambda beneath, bands=2: split)
     parts = to_float(renderer.render(camera, (256, 192))[0])
     blocks = np.abs(downsample(parts, 8) - downsample(whole, 8)).max(axis=-1)
-    assert np.abs(parts - whole).mean() < 0.002
-    assert np.percentile(blocks, 99) < 0.01
+    assert np.abs(parts - whole).mean() < mean_limit
+    assert np.percentile(blocks, 99) < block_limit
