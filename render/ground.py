@@ -7,7 +7,7 @@ import moderngl
 import numpy as np
 
 from core.ground_mesh import GROUND_CHUNKS
-from render.design_maps import DesignMapTextures, GroundChunks
+from render.design_maps import DesignMapTextures
 from render.shaders import load_program
 from render.uniforms import SINK_UNIT, FrameUniforms
 
@@ -75,13 +75,13 @@ def chunked_mesh(nu: int, nv: int, chunks: int) -> tuple[np.ndarray, np.ndarray,
 
 
 def chunk_levels(
-    chunks: GroundChunks, box: tuple[np.ndarray, np.ndarray, np.ndarray], frame: FrameUniforms
+    lo: np.ndarray, hi: np.ndarray, deviation: np.ndarray, frame: FrameUniforms
 ) -> np.ndarray:
     """Per chunk (rows along v), the level to draw it at: the coarsest that moves its ground
     by under half a pixel seen from the eye at its nearest point (never less than the finest
-    already does); -1 where it lies outside the view. `box`: its lowest corner (x, y, z), its
-    highest, in world units, each (chunks, chunks, 3)."""
-    lo, hi, deviation = box[0], box[1], box[2]
+    already does); -1 where it lies outside the view. lo, hi: the lowest and highest corner
+    (x, y, z) of its box, each (chunks, chunks, 3); deviation: (levels, chunks, chunks), what
+    each level moves its ground by (GroundChunks.deviation), all in world units."""
     eye = np.asarray(frame.eye, np.float64)
     gap = np.maximum(np.maximum(lo - eye, eye - hi), 0.0)
     pixel = 2.0 * np.tan(np.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
@@ -136,21 +136,18 @@ class GroundRenderer:
         vao, _, ranges = self.meshes[quads]
         return vao, ranges
 
-    def _release_mesh(self) -> None:
-        for vao, buffers, _ in self.meshes.values():
-            vao.release()
-            for buffer in buffers:
-                buffer.release()
-        self.meshes.clear()
+    def _release_mesh(self, keep: list[tuple[int, int]] | None = None) -> None:
+        """Release the meshes of every level (but those of `keep`)."""
+        for quads in [q for q in self.meshes if keep is None or q not in keep]:
+            vao, buffers, _ = self.meshes.pop(quads)
+            for obj in (vao, *buffers):
+                obj.release()
 
     def _draw_mesh(self, frame: FrameUniforms, maps: DesignMapTextures) -> None:
         """The grid over the grassed cells, each chunk at its level (chunk_levels)."""
         p = self.program
         sinks, levels, chunks = maps.ground_levels()
-        for quads in [q for q in self.meshes if q not in levels]:  # another map's: let go
-            vao, buffers, _ = self.meshes.pop(quads)
-            for obj in (vao, *buffers):
-                obj.release()
+        self._release_mesh(keep=levels)  # another map's levels: let go
         scale = frame.height_scale
         x0, z0, x1, z1 = self.grass_rect
         c = GROUND_CHUNKS
@@ -160,7 +157,7 @@ class GroundRenderer:
             np.broadcast_arrays(xs[None, :-1], scale * chunks.low - margin, zs[:-1, None]), -1
         )
         hi = np.stack(np.broadcast_arrays(xs[None, 1:], scale * chunks.high, zs[1:, None]), -1)
-        drawn = chunk_levels(chunks, (lo, hi, scale * chunks.deviation), frame)
+        drawn = chunk_levels(lo, hi, scale * chunks.deviation, frame)
         self.chunks_drawn = drawn
         # a crack between two chunks is at most both levels' deviations wide
         p["u_skirt"].value = 2.0 * float(scale * chunks.deviation.max()) + 1e-3

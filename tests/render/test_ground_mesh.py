@@ -119,8 +119,8 @@ def _ground_only(headless, forced=None, monkeypatch=None):
     if forced is not None:
         levels = render.ground.chunk_levels
 
-        def fixed(chunks, box, frame):
-            drawn = levels(chunks, box, frame)
+        def fixed(lo, hi, deviation, frame):
+            drawn = levels(lo, hi, deviation, frame)
             return np.where(drawn < 0, drawn, forced)
 
         monkeypatch.setattr(render.ground, "chunk_levels", fixed)
