@@ -112,6 +112,7 @@ def slope_moments(
         and c across it: weights w (Canopy.transmittance at the vertex's height over the
         ground, none below it when upright), times |n · e|."""
         through = np.exp(-canopy.cumulative(t)).astype(np.float32)  # once per depth, direction
+        through[through < 1e-30] = 0.0  # no subnormals into the products below
         _seen(height, along, sideways, face, g, c, through, canopy.dy, canopy.height, upright,
               seen, weights)  # fmt: skip
         sums = (seen.T @ basis).astype(np.float64)
