@@ -233,3 +233,79 @@ def slice_grids(
         error = np.minimum(curvature * quad / 8.0, spread)
         out[error <= allowed] = n
     return out
+
+
+def corner_deviations(
+    heights: np.ndarray, scale: float, columns: int, rows: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The ground at every cell corner ((columns + 1, rows + 1) world heights) and, per cell
+    ((columns, rows) each), the least and the most the ground inside it lies above the
+    bilinear blend of its four corners: sampled where cell_ranges samples, which is exact for
+    the difference too (the blend is bilinear over the whole cell), with cell_ranges' margin."""
+    h, w = heights.shape
+    xs, x_starts = _lines(columns, w)
+    zs, z_starts = _lines(rows, h)
+    corners = bilinear_grid(heights, xs[x_starts], zs[z_starts]) * scale  # (columns + 1, rows + 1)
+    # each x line's cell and its fraction across it (a border line: the cell it ends)
+    cell_x = np.minimum(np.searchsorted(xs[x_starts], xs, side="right") - 1, columns - 1)
+    fx = (xs * columns - cell_x)[:, None]
+    lo = np.empty((columns, rows), np.float32)
+    hi = np.empty((columns, rows), np.float32)
+    margin = 1e-4 * max(scale, 1.0)
+    band = max(1, 4_000_000 // max(xs.size * max(zs.size // rows, 1), 1))
+    for r0 in range(0, rows, band):
+        r1 = min(r0 + band, rows)
+        a, b = z_starts[r0], z_starts[r1]
+        z = zs[a : b + 1]
+        cell_z = np.minimum(np.searchsorted(zs[z_starts], z, side="right") - 1, rows - 1)
+        fz = (z * rows - cell_z)[None, :]
+        # the corners' blend at every sample: along x on each corner row, then along z
+        along = corners[cell_x] * (1 - fx) + corners[cell_x + 1] * fx  # (x lines, rows + 1)
+        blend = along[:, cell_z] * (1 - fz) + along[:, cell_z + 1] * fz
+        d = bilinear_grid(heights, xs, z) * scale - blend
+        x_lo, x_hi = block_extremes(d, x_starts, axis=0)
+        starts = z_starts[r0 : r1 + 1] - a
+        lo[:, r0:r1] = block_extremes(x_lo, starts, axis=1)[0] - margin
+        hi[:, r0:r1] = block_extremes(x_hi, starts, axis=1)[1] + margin
+    return corners, lo, hi
+
+
+def ground_planes(
+    corners: np.ndarray, below: np.ndarray, above: np.ndarray, ix, iz, sx, sz, base
+) -> np.ndarray:
+    """(n, 4) float32, per block of sx × sz cells from cell (ix, iz) (integer arrays) whose
+    lowest ground is `base`: a plane's slope along x and z per cell, fitted to the ground at
+    the block's cell corners (least squares), and the lowest and highest ground over that
+    plane, both relative to `base`: over the block, plane(x, z) + [2] ≤ the ground ≤
+    plane(x, z) + [3], plane(x, z) = [0] x + [1] z (x, z in cells from the block's corner).
+    From corner_deviations' corners and per-cell deviations: in a cell the ground lies between
+    the blend of its corners plus `below` and plus `above`, and the blend minus the plane is
+    bilinear, its extremes at the corners. On a slope a volume cuboid extruded over the whole
+    height range holds air above the grass that a ray crosses for nothing; between these two
+    planes it does not."""
+    ix, iz = (np.asarray(a, np.int64).reshape(-1) for a in (ix, iz))
+    sx, sz = (np.broadcast_to(np.asarray(a, np.int64), ix.shape) for a in (sx, sz))
+    base = np.broadcast_to(np.asarray(base, np.float64), ix.shape)
+    out = np.zeros((ix.size, 4), np.float32)
+    columns, rows = below.shape
+    for w, h in {(int(a), int(b)) for a, b in zip(sx, sz, strict=True)}:
+        at = np.flatnonzero((sx == w) & (sz == h))
+        x = np.arange(w + 1)
+        z = np.arange(h + 1)
+        c = corners[np.minimum(ix[at, None, None] + x[None, :, None], columns),
+                    np.minimum(iz[at, None, None] + z[None, None, :], rows)]  # fmt: skip
+        # least squares over a full grid of corners: the slopes separate by axis
+        xc, zc = x - 0.5 * w, z - 0.5 * h
+        gx = (c.mean(axis=2) @ xc) / max(float(xc @ xc), 1e-12)  # (k,)
+        gz = (c.mean(axis=1) @ zc) / max(float(zc @ zc), 1e-12)
+        r = c - gx[:, None, None] * x[None, :, None] - gz[:, None, None] * z[None, None, :]
+        r_lo = np.minimum(np.minimum(r[:, :-1, :-1], r[:, 1:, :-1]),
+                          np.minimum(r[:, :-1, 1:], r[:, 1:, 1:]))  # fmt: skip
+        r_hi = np.maximum(np.maximum(r[:, :-1, :-1], r[:, 1:, :-1]),
+                          np.maximum(r[:, :-1, 1:], r[:, 1:, 1:]))  # fmt: skip
+        cells = (np.minimum(ix[at, None, None] + x[None, :-1, None], columns - 1),
+                 np.minimum(iz[at, None, None] + z[None, None, :-1], rows - 1))  # fmt: skip
+        out[at, 0], out[at, 1] = gx, gz
+        out[at, 2] = (r_lo + below[cells]).min(axis=(1, 2)) - base[at]
+        out[at, 3] = (r_hi + above[cells]).max(axis=(1, 2)) - base[at]
+    return out

@@ -9,7 +9,14 @@ import numba
 import numpy as np
 
 from core.grid import INSTANCE_DTYPE
-from core.heights import block_maxima, blocks_max, cell_curvature, cell_ranges
+from core.heights import (
+    block_maxima,
+    blocks_max,
+    cell_curvature,
+    cell_ranges,
+    corner_deviations,
+    ground_planes,
+)
 from core.lod import ALL_IN
 from core.quadtree import QuadTree
 from core.tiling import mirror_sign, noise_map
@@ -43,6 +50,10 @@ class Terrain:
     # a bound on the ground's bends, each cell's own (core/heights.py cell_curvature), and
     # their maxima over blocks of 2 × 2, 4 × 4, … cells up to the whole terrain
     bends: list[np.ndarray] = field(init=False)
+    # the ground at every cell corner and how far each cell's ground strays below and above
+    # the blend of its corners (core/heights.py corner_deviations); None on flat ground
+    corner_heights: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(init=False)
+    _planes: dict = field(init=False, repr=False)  # Terrain.planes_of's tables by block size
 
     def __post_init__(self) -> None:
         if self.height_scale < 0:
@@ -50,10 +61,14 @@ class Terrain:
         if self.heights is not None and self.height_scale > 0:
             lo, hi = cell_ranges(self.heights, self.height_scale, self.columns, self.rows)
             bends = cell_curvature(self.heights, self.height_scale, self.columns, self.rows)
+            corners = corner_deviations(self.heights, self.height_scale, self.columns, self.rows)
         else:
+            corners = None
             lo = hi = np.zeros((self.columns, self.rows), np.float32)
             bends = np.zeros((self.columns, self.rows), np.float32)
         object.__setattr__(self, "bends", block_maxima(bends))
+        object.__setattr__(self, "corner_heights", corners)
+        object.__setattr__(self, "_planes", {})
         # C order: the compiled traversal is compiled for that layout once
         object.__setattr__(self, "cell_min", np.ascontiguousarray(lo, np.float32))
         object.__setattr__(self, "cell_max", np.ascontiguousarray(hi, np.float32))
@@ -98,6 +113,53 @@ class Terrain:
         sz = np.rint(instances["size"][:, 1]).astype(np.int64)
         ix, iz = np.clip(ix, 0, self.columns - 1), np.clip(iz, 0, self.rows - 1)
         return blocks_max(self.bends, ix, iz, np.maximum(sx, 1), np.maximum(sz, 1))
+
+    def planes_of(self, instances: np.ndarray) -> np.ndarray:
+        """Per instance (INSTANCE_DTYPE), (n, 4) float32: the ground's slope along x and z per
+        cell and the lowest and highest ground over that plane, relative to the instance's
+        lowest ground (core/heights.py ground_planes), where the two planes lie closer than
+        its height range; elsewhere (and on flat ground) (0, 0, 0, height range): the range.
+        The planes of every block of a size at every position the quadtree puts one are made
+        once, when a frame first draws a block of that size."""
+        out = np.zeros((len(instances), 4), np.float32)
+        out[:, 3] = instances["ground"][:, 1]
+        if self.corner_heights is None or not len(instances):
+            return out
+        ix = np.rint(instances["origin"][:, 0] - self.origin[0]).astype(np.int64)
+        iz = np.rint(instances["origin"][:, 1] - self.origin[1]).astype(np.int64)
+        sx = np.maximum(np.rint(instances["size"][:, 0]).astype(np.int64), 1)
+        sz = np.maximum(np.rint(instances["size"][:, 1]).astype(np.int64), 1)
+        ix, iz = np.clip(ix, 0, self.columns - 1), np.clip(iz, 0, self.rows - 1)
+        planes = np.empty_like(out)
+        sizes = sx * (self.rows + 1) + sz
+        for key in np.unique(sizes):
+            at = np.flatnonzero(sizes == key)
+            w, h = int(sx[at[0]]), int(sz[at[0]])
+            # a quadtree node starts at a multiple of the power of two its longer side rounds
+            # up to (a node cut short by the terrain's edge keeps its level's start)
+            step = 1 << int(np.ceil(np.log2(max(w, h))))
+            if step < 8:  # small blocks: each frame's own (a table would hold every cell)
+                planes[at] = ground_planes(*self.corner_heights, ix[at], iz[at], w, h, 0.0)
+                continue
+            table = self._block_planes(w, h, step)
+            planes[at] = table[ix[at] // step, iz[at] // step]
+        planes[:, 2:] -= instances["ground"][:, :1]
+        thinner = planes[:, 3] - planes[:, 2] < out[:, 3]
+        out[thinner] = planes[thinner]
+        return out
+
+    def _block_planes(self, w: int, h: int, step: int) -> np.ndarray:
+        """ground_planes of the w × h blocks at every multiple of `step` (absolute heights),
+        (columns / step, rows / step, 4), kept for the terrain's life."""
+        table = self._planes.get((w, h, step))
+        if table is None:
+            assert self.corner_heights is not None
+            ix, iz = np.meshgrid(np.arange(0, self.columns, step), np.arange(0, self.rows, step),
+                                 indexing="ij")  # fmt: skip
+            flat = ground_planes(*self.corner_heights, ix.ravel(), iz.ravel(), w, h, 0.0)
+            table = flat.reshape(*ix.shape, 4)
+            self._planes[(w, h, step)] = table
+        return table
 
     def all_cells(self) -> np.ndarray:
         ix, iz = np.meshgrid(np.arange(self.columns), np.arange(self.rows), indexing="ij")

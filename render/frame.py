@@ -421,7 +421,7 @@ class FramePipeline:
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
             grass.image.view = (frame.eye, pixel, terrain)  # its slices' grids
             tu = time.perf_counter()
-            batches = grass.upload(selected, frame.eye)
+            batches = grass.upload(selected, frame.eye, self.terrain)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
             for (representation, slices), (_renderer, count) in batches.items():
@@ -465,7 +465,7 @@ class FramePipeline:
             for (_, renderer, band), part in zip(volumes, row, strict=True):
                 if part.stop > part.start:
                     self._check_abort()
-                    renderer.set_instances(renderer.cells[part])
+                    renderer.set_instances(renderer.cells[part], renderer.plane_rows(part))
                     renderer.band = band
                     stats.t_v_ms += timed(lambda r=renderer: _passes(r, frame))
         self.overlay.draw(frame)

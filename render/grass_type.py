@@ -13,6 +13,7 @@ from core.grid import INSTANCE_DTYPE
 from core.lod import NO_FADE, LodConfig
 from core.params import SliceParams
 from core.patch import GrassPatch
+from core.terrain import Terrain
 from render.conversion import PatchConverter
 from render.facing import FacingTable, SlopeTable
 from render.geometry import GeometryRenderer
@@ -159,10 +160,11 @@ class GrassTypeRenderer:
 
     # -- drawing -----------------------------------------------------------------------------
     def upload(
-        self, cells: DrawList, eye: np.ndarray | None = None
+        self, cells: DrawList, eye: np.ndarray | None = None, terrain: Terrain | None = None
     ) -> dict[tuple[str, int], tuple[object, int]]:
         """Hand each renderer its cells (one instance upload each): (representation, slices)
-        -> (renderer, instance count). `eye`: the volume's cells go far to near from it."""
+        -> (renderer, instance count). `eye`: the volume's cells go far to near from it;
+        `terrain`: their cuboids follow its ground's slope (Terrain.planes_of)."""
         batches = {}
         for key, instances in cells.batches.items():
             representation, n = key
@@ -176,6 +178,7 @@ class GrassTypeRenderer:
                     order = np.argsort(-far, kind="stable")
                     instances, far = instances[order], far[order]
                 renderer.cells, renderer.distances = instances, far  # uploaded by distance band
+                renderer.planes = terrain.planes_of(instances) if terrain is not None else None
             else:
                 renderer.set_instances(instances)
             if representation != "geometry":  # blades stand in single cells: their own w

@@ -1,7 +1,9 @@
 """Volume-based grass renderer (thesis 5.2): prepare / draw / finalize.
 
 One cuboid carrier per (macro-)cell instance, all instances in one instanced draw, back faces
-culled; the fragment shader ray-casts through the slices (shaders/volume.glsl).
+culled; the fragment shader ray-casts through the slices (shaders/volume.glsl). On a slope the
+cuboid's bottom and top follow the ground's plane (core/terrain.py planes_of, a second
+per-instance buffer) instead of spanning its whole height range.
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ import moderngl
 import numpy as np
 
 from core.lod import NO_FADE
-from render.buffers import InstancedRenderer, instance_layout
+from render.buffers import InstancedRenderer, instance_layout, upload
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.shaders import load_program, wind_defines
 from render.slices import SliceTextures, spread_levels
@@ -49,6 +51,9 @@ class VolumeRenderer(InstancedRenderer):
     # the cells of the frame, far to near, and their distances (render/grass_type.py upload)
     cells: np.ndarray | None = None
     distances: np.ndarray | None = None
+    # per cell, the ground's slope and the lowest and highest ground over it (core/terrain.py
+    # planes_of): the cuboid's bottom and top follow the slope; None: level cuboids
+    planes: np.ndarray | None = None
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -56,6 +61,7 @@ class VolumeRenderer(InstancedRenderer):
         self.vbo = ctx.buffer(_CORNERS.tobytes())
         self.ibo = ctx.buffer(_FACES.tobytes())
         self.instances: moderngl.Buffer | None = None
+        self.plane_buffer: moderngl.Buffer | None = None
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
         self.textures: SliceTextures | None = None
@@ -73,12 +79,33 @@ class VolumeRenderer(InstancedRenderer):
         self._owned = owned
         self.slices = textures.slices if textures is not None else 0
 
+    def plane_rows(self, part: slice) -> np.ndarray | None:
+        """The planes of `cells[part]` (None with level cuboids)."""
+        return None if self.planes is None else self.planes[part]
+
+    def set_instances(self, instances: np.ndarray, planes: np.ndarray | None = None) -> None:
+        """The cells to draw and, per cell, the planes its cuboid lies between (core/terrain.py
+        planes_of; None: from its lowest ground over its height range)."""
+        if planes is None:
+            planes = np.zeros((max(instances.size, 1), 4), np.float32)
+            if instances.size:
+                planes[:, 3] = instances["ground"][:, 1]
+        elif len(planes) != instances.size:
+            raise ValueError("one plane row per instance")
+        data = np.ascontiguousarray(planes if len(planes) else np.zeros((1, 4)), np.float32)
+        buf = upload(self.ctx, self.plane_buffer, data, grow_only=True)
+        fresh = buf is not self.plane_buffer
+        self.plane_buffer = buf
+        super().set_instances(instances)
+        if fresh and self.instances is not None:
+            self._rebuild_vao()
+
     def _make_vao(self) -> moderngl.VertexArray:
+        buffers = [(self.vbo, "3f", "in_corner"), instance_layout(self.program, self.instances)]
+        if self.plane_buffer is not None and "in_plane" in self.program:
+            buffers.append((self.plane_buffer, "4f/i", "in_plane"))
         return self.ctx.vertex_array(
-            self.program,
-            [(self.vbo, "3f", "in_corner"), instance_layout(self.program, self.instances)],
-            index_buffer=self.ibo,
-            index_element_size=4,
+            self.program, buffers, index_buffer=self.ibo, index_element_size=4
         )
 
     def prepare(self, frame: FrameUniforms) -> None:
@@ -107,6 +134,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_side_colors"].write(np.ascontiguousarray(t.canopy.side_colors, np.float32))
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
+        p["u_pixel"].value = pixel
         # the horizontal slice's height; none in a band pass whose heights leave it out (the
         # shader would find where its rays cross it only to count nothing there)
         floor = -1.0 if self.floor is None else self.floor * float(t.height)
@@ -151,7 +179,7 @@ class VolumeRenderer(InstancedRenderer):
         self.ctx.blend_func = moderngl.DEFAULT_BLENDING
 
     def release(self) -> None:
-        for obj in (self.vao, self.instances, self.vbo, self.ibo):
+        for obj in (self.vao, self.instances, self.plane_buffer, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()
         if self.textures is not None and self._owned:

@@ -12,6 +12,9 @@
 uniform mat4 u_view_proj;
 uniform float u_height;        // patch height (cuboid height)
 uniform vec2 u_band;           // the heights over the ground this pass counts (below)
+uniform vec3 u_eye;
+uniform float u_pixel;         // radians a pixel spans
+const float FOLLOW_PIXELS = 2.0;  // the least thickness on the screen of a cuboid on a slope
 
 in vec3 in_corner;             // unit cube corner
 in vec2 in_origin;             // per instance: cell origin
@@ -21,6 +24,9 @@ in vec2 in_size;               // per instance: (macro-)cell extent in cells alo
 in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
 in vec4 in_config;             // per instance: config transform into the design maps
 in vec2 in_ground;             // per instance: lowest ground, unplanarity (eq. 6.14)
+// per instance: the ground's slope along x and z per cell and the lowest and highest ground
+// over that plane, relative to the lowest ground (core/terrain.py planes_of)
+in vec4 in_plane;
 
 out vec3 v_patch;              // position on the cuboid in patch space
 flat out vec2 v_origin;
@@ -30,12 +36,31 @@ flat out vec2 v_lod;
 flat out vec2 v_mirror;
 flat out vec4 v_config;
 flat out vec2 v_ground;
+flat out float v_follows;      // 1: the cuboid drawn follows the ground's slope (in_plane)
 
 void main() {
     // eq. 6.14: the cuboid reaches from the lowest ground to the grass over the highest, or to
     // the top of this pass's band of heights over it, above which its rays count nothing (a
-    // band pass of a type that grows among another: render/volume_order.py)
-    v_patch = in_corner * vec3(in_size.x, min(u_band.y, u_height) + in_ground.y, in_size.y);
+    // band pass of a type that grows among another: render/volume_order.py). On a slope its
+    // bottom and top follow the ground's plane (in_plane): a level one held air above the
+    // grass on the slope's lower side, which rays crossed for nothing; the fragment stage
+    // still steps through the level cuboid, which holds this one's grass.
+    // A cuboid follows the slope only where it spans a few pixels on the screen (its
+    // thickness at its nearest point): a thinner one covers most of its pixels in part, and a
+    // pixel's one ray, through its centre, then meets grass that the samples it colours do
+    // not (a lattice of light pixels on far hills); level cuboids are tall enough there.
+    vec2 local = in_corner.xz * in_size;
+    vec3 base = vec3(in_origin.x, in_ground.x, in_origin.y);
+    float band_top = min(u_band.y, u_height);
+    vec3 box_far = base + vec3(in_size.x, in_ground.y + band_top, in_size.y);
+    float near = distance(u_eye, clamp(u_eye, base, box_far));
+    float thick = in_plane.w - in_plane.z + band_top;
+    bool slope = in_plane.x != 0.0 || in_plane.y != 0.0;
+    v_follows = slope && thick > FOLLOW_PIXELS * u_pixel * near ? 1.0 : 0.0;
+    vec4 planes = v_follows > 0.5 ? in_plane : vec4(0.0, 0.0, 0.0, in_ground.y);
+    float plane = dot(planes.xy, local);
+    float y = plane + (in_corner.y > 0.5 ? planes.w + band_top : planes.z);
+    v_patch = vec3(local.x, y, local.y);
     v_origin = in_origin;
     v_density = in_cell_density;
     v_size = in_size;
@@ -43,7 +68,7 @@ void main() {
     v_mirror = in_mirror;
     v_config = in_config;
     v_ground = in_ground;
-    gl_Position = u_view_proj * vec4(v_patch + vec3(in_origin.x, in_ground.x, in_origin.y), 1.0);
+    gl_Position = u_view_proj * vec4(v_patch + base, 1.0);
 }
 
 #elif defined FRAGMENT_SHADER
@@ -105,6 +130,7 @@ flat in vec2 v_lod;
 flat in vec2 v_mirror;
 flat in vec4 v_config;
 flat in vec2 v_ground;
+flat in float v_follows;
 
 out vec4 f_color;
 
@@ -185,7 +211,17 @@ void main() {
     float top = band_top + v_ground.y;  // the cuboid's (vertex stage)
     vec3 d = normalize(v_patch - eye);                        // eq. 5.5 (no rotation yet)
     vec3 d_dx = dFdx(d), d_dy = dFdy(d);  // how the ray turns across the pixel
-    vec3 e = v_patch;                                         // eq. 5.4
+    // eq. 5.4: the ray starts where it enters the level cuboid: where the cuboid follows a
+    // slope (v_follows), the one drawn lies inside the level one where the grass is and may
+    // reach out of it above the grass
+    vec3 e = v_patch;
+    if (v_follows > 0.5) {
+        vec3 inv = 1.0 / vec3(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.y) < 1e-6 ? 1e-6 : d.y,
+                              abs(d.z) < 1e-6 ? 1e-6 : d.z);
+        vec3 tmin = min((vec3(0.0) - eye) * inv, (vec3(v_size.x, top, v_size.y) - eye) * inv);
+        e = eye + max(max(max(tmin.x, tmin.y), tmin.z), 0.0) * d;
+    }
+    float entry = distance(eye, e);
     // On uneven ground the extruded cuboid holds empty space above the grass: march the ray
     // over the height map in a few coarse steps and start the slice stepping just before it
     // reaches the grass layer, or a tall cuboid would use up the steps in empty air.
@@ -222,7 +258,7 @@ void main() {
     vec2 pd = sign(d.xz);                                     // eq. 5.10
     vec2 pi = pm + (pd + abs(pd)) * p_inum2;                  // eqs. 5.11-5.12
     vec2 safe_d = vec2(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.z) < 1e-6 ? 1e-6 : d.z);
-    float lod = max(log2(distance(u_eye, v_patch + base) * u_lod_scale), 0.0);
+    float lod = max(log2(entry * u_lod_scale), 0.0);
     // the wind where the ray enters (it varies over metres, a ray crosses a cell or two): the
     // slices are read where the bent blades came from (Habel's sheared lookup, _wind.glsl)
     // (taken where the ray reaches half the grass's height over the ground under its start:
