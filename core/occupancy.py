@@ -88,3 +88,27 @@ class DensityOccupancy:
             c0, r0, c1, r1 = c0 // 2, r0 // 2, (c1 + 1) // 2, (r1 + 1) // 2
             below = self.levels[level - 1][2 * c0 : 2 * c1, 2 * r0 : 2 * r1]
             self.levels[level][c0:c1, r0:r1] = reduce_2x2(below, np.bitwise_or, 0)
+
+    def rects(self, channel: int, ix, iz, sx, sz) -> np.ndarray:
+        """(n, 4) float32, per block of sx × sz cells from cell (ix, iz) (integer arrays): the
+        rectangle (x0, z0, x1, z1), in cells from the block's corner, round the block's cells
+        that can show grass of `channel`; the whole block where none can. A volume cuboid of
+        a grass type that grows in clumps need not reach over the bare rest of its block."""
+        ix, iz = (np.asarray(a, np.int64).reshape(-1) for a in (ix, iz))
+        sx, sz = (np.broadcast_to(np.asarray(a, np.int64), ix.shape) for a in (sx, sz))
+        out = np.zeros((ix.size, 4), np.float32)
+        out[:, 2], out[:, 3] = sx, sz
+        bit = np.uint8(1 << channel)
+        cells = self.levels[0]
+        for w, h in {(int(a), int(b)) for a, b in zip(sx, sz, strict=True)}:
+            at = np.flatnonzero((sx == w) & (sz == h))
+            cols = np.minimum(ix[at, None] + np.arange(w), self.columns - 1)
+            rows = np.minimum(iz[at, None] + np.arange(h), self.rows - 1)
+            grows = (cells[cols[:, :, None], rows[:, None, :]] & bit) != 0  # (k, w, h)
+            along_x, along_z = grows.any(axis=2), grows.any(axis=1)
+            some = along_x.any(axis=1)
+            first_x, last_x = along_x.argmax(axis=1), w - 1 - along_x[:, ::-1].argmax(axis=1)
+            first_z, last_z = along_z.argmax(axis=1), h - 1 - along_z[:, ::-1].argmax(axis=1)
+            rect = np.stack([first_x, first_z, last_x + 1, last_z + 1], axis=1)
+            out[at[some]] = rect[some]
+        return out

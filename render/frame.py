@@ -411,9 +411,6 @@ class FramePipeline:
         self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
         self.tiling.use()
         self.wind_noise.use()
-        stats.t_m_ms += timed(
-            lambda: (self.ground.draw(frame, self.map_textures), self.props.draw(frame))
-        )
 
         drawn = []
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
@@ -421,7 +418,7 @@ class FramePipeline:
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
             grass.image.view = (frame.eye, pixel, terrain)  # its slices' grids
             tu = time.perf_counter()
-            batches = grass.upload(selected, frame.eye, self.terrain)
+            batches = grass.upload(selected, frame.eye, self.terrain, self._occupancy)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
             for (representation, slices), (_renderer, count) in batches.items():
@@ -459,6 +456,13 @@ class FramePipeline:
                 key = {"geometry": "t_g_ms", "image": "t_i_ms"}[representation]
                 elapsed = timed(lambda r=renderer: _passes(r, frame))
                 setattr(stats, key, getattr(stats, key) + elapsed)
+        # The ground and the props after the blades and the image-based grass, whose samples
+        # are opaque where they cover (alpha to coverage, no blending): the ground's fragments
+        # behind them fail the depth test before they are shaded. Before the volume, which
+        # blends over it.
+        stats.t_m_ms += timed(
+            lambda: (self.ground.draw(frame, self.map_textures), self.props.draw(frame))
+        )
         volumes.sort(key=lambda v: v[0])
         count = DEPTH_BANDS if len(volumes) > 1 else 1
         for row in distance_bands([r.distances for _, r, _ in volumes], count):

@@ -11,6 +11,7 @@ from core.canopy import Canopy
 from core.draw_list import DrawList
 from core.grid import INSTANCE_DTYPE
 from core.lod import NO_FADE, LodConfig
+from core.occupancy import DensityOccupancy
 from core.params import SliceParams
 from core.patch import GrassPatch
 from core.terrain import Terrain
@@ -19,7 +20,7 @@ from render.facing import FacingTable, SlopeTable
 from render.geometry import GeometryRenderer
 from render.image import ImageRenderer
 from render.slices import SliceTextures
-from render.volume import VolumeRenderer
+from render.volume import VolumeRenderer, carriers
 
 
 def technique_colors() -> dict[str, list[tuple[float, float, float]]]:
@@ -160,11 +161,16 @@ class GrassTypeRenderer:
 
     # -- drawing -----------------------------------------------------------------------------
     def upload(
-        self, cells: DrawList, eye: np.ndarray | None = None, terrain: Terrain | None = None
+        self,
+        cells: DrawList,
+        eye: np.ndarray | None = None,
+        terrain: Terrain | None = None,
+        occupancy: DensityOccupancy | None = None,
     ) -> dict[tuple[str, int], tuple[object, int]]:
         """Hand each renderer its cells (one instance upload each): (representation, slices)
         -> (renderer, instance count). `eye`: the volume's cells go far to near from it;
-        `terrain`: their cuboids follow its ground's slope (Terrain.planes_of)."""
+        `terrain`: their cuboids follow its ground's slope (Terrain.planes_of) and, with
+        `occupancy`, keep to the cells where this type can grow (DensityOccupancy.rects)."""
         batches = {}
         for key, instances in cells.batches.items():
             representation, n = key
@@ -178,7 +184,9 @@ class GrassTypeRenderer:
                     order = np.argsort(-far, kind="stable")
                     instances, far = instances[order], far[order]
                 renderer.cells, renderer.distances = instances, far  # uploaded by distance band
-                renderer.planes = terrain.planes_of(instances) if terrain is not None else None
+                renderer.planes = None
+                if terrain is not None:
+                    renderer.planes = carriers(terrain, occupancy, self.density_channel, instances)
             else:
                 renderer.set_instances(instances)
             if representation != "geometry":  # blades stand in single cells: their own w

@@ -14,6 +14,8 @@ import moderngl
 import numpy as np
 
 from core.lod import NO_FADE
+from core.occupancy import DensityOccupancy
+from core.terrain import Terrain
 from render.buffers import InstancedRenderer, instance_layout, upload
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.shaders import load_program, wind_defines
@@ -27,6 +29,26 @@ _FACES = np.array(
      2, 6, 3, 3, 6, 7,  0, 4, 2, 2, 4, 6,  1, 3, 5, 3, 7, 5],
     dtype=np.uint32,
 )  # fmt: skip
+
+
+def carriers(
+    terrain: Terrain, occupancy: DensityOccupancy | None, channel: int, instances: np.ndarray
+) -> np.ndarray:
+    """(n, 8) float32 per instance: the planes its cuboid lies between (Terrain.planes_of)
+    and the rectangle of its cells where the grass of density `channel` can grow
+    (DensityOccupancy.rects; the whole block without an occupancy)."""
+    out = np.empty((len(instances), 8), np.float32)
+    out[:, :4] = terrain.planes_of(instances)
+    out[:, 4:6] = 0.0
+    out[:, 6:] = instances["size"]
+    if occupancy is not None and len(instances):
+        ix = np.rint(instances["origin"][:, 0] - terrain.origin[0]).astype(np.int64)
+        iz = np.rint(instances["origin"][:, 1] - terrain.origin[1]).astype(np.int64)
+        sx = np.maximum(np.rint(instances["size"][:, 0]).astype(np.int64), 1)
+        sz = np.maximum(np.rint(instances["size"][:, 1]).astype(np.int64), 1)
+        ix, iz = np.clip(ix, 0, terrain.columns - 1), np.clip(iz, 0, terrain.rows - 1)
+        out[:, 4:] = occupancy.rects(channel, ix, iz, sx, sz)
+    return out
 
 
 class VolumeRenderer(InstancedRenderer):
@@ -52,7 +74,8 @@ class VolumeRenderer(InstancedRenderer):
     cells: np.ndarray | None = None
     distances: np.ndarray | None = None
     # per cell, the ground's slope and the lowest and highest ground over it (core/terrain.py
-    # planes_of): the cuboid's bottom and top follow the slope; None: level cuboids
+    # planes_of), and the rectangle where the grass grows in it (carriers): the cuboid's
+    # bottom and top follow the slope, its walls that rectangle; None: level, whole cuboids
     planes: np.ndarray | None = None
 
     def __init__(self, ctx: moderngl.Context) -> None:
@@ -87,12 +110,13 @@ class VolumeRenderer(InstancedRenderer):
         """The cells to draw and, per cell, the planes its cuboid lies between (core/terrain.py
         planes_of; None: from its lowest ground over its height range)."""
         if planes is None:
-            planes = np.zeros((max(instances.size, 1), 4), np.float32)
+            planes = np.zeros((max(instances.size, 1), 8), np.float32)
             if instances.size:
                 planes[:, 3] = instances["ground"][:, 1]
-        elif len(planes) != instances.size:
-            raise ValueError("one plane row per instance")
-        data = np.ascontiguousarray(planes if len(planes) else np.zeros((1, 4)), np.float32)
+                planes[:, 6:] = instances["size"]
+        elif planes.shape != (instances.size, 8):
+            raise ValueError("one row of planes and rectangle per instance")
+        data = np.ascontiguousarray(planes if len(planes) else np.zeros((1, 8)), np.float32)
         buf = upload(self.ctx, self.plane_buffer, data, grow_only=True)
         fresh = buf is not self.plane_buffer
         self.plane_buffer = buf
@@ -103,7 +127,7 @@ class VolumeRenderer(InstancedRenderer):
     def _make_vao(self) -> moderngl.VertexArray:
         buffers = [(self.vbo, "3f", "in_corner"), instance_layout(self.program, self.instances)]
         if self.plane_buffer is not None and "in_plane" in self.program:
-            buffers.append((self.plane_buffer, "4f/i", "in_plane"))
+            buffers.append((self.plane_buffer, "4f 4f/i", "in_plane", "in_rect"))
         return self.ctx.vertex_array(
             self.program, buffers, index_buffer=self.ibo, index_element_size=4
         )

@@ -27,6 +27,9 @@ in vec2 in_ground;             // per instance: lowest ground, unplanarity (eq. 
 // per instance: the ground's slope along x and z per cell and the lowest and highest ground
 // over that plane, relative to the lowest ground (core/terrain.py planes_of)
 in vec4 in_plane;
+// per instance: the rectangle (x0, z0, x1, z1), in cells from its corner, where its grass can
+// grow (render/volume.py carriers): the cuboid keeps to it
+in vec4 in_rect;
 
 out vec3 v_patch;              // position on the cuboid in patch space
 flat out vec2 v_origin;
@@ -36,7 +39,7 @@ flat out vec2 v_lod;
 flat out vec2 v_mirror;
 flat out vec4 v_config;
 flat out vec2 v_ground;
-flat out float v_follows;      // 1: the cuboid drawn follows the ground's slope (in_plane)
+flat out float v_follows;      // 1: the cuboid drawn follows the slope or keeps to in_rect
 
 void main() {
     // eq. 6.14: the cuboid reaches from the lowest ground to the grass over the highest, or to
@@ -49,15 +52,16 @@ void main() {
     // thickness at its nearest point): a thinner one covers most of its pixels in part, and a
     // pixel's one ray, through its centre, then meets grass that the samples it colours do
     // not (a lattice of light pixels on far hills); level cuboids are tall enough there.
-    vec2 local = in_corner.xz * in_size;
+    vec2 local = mix(in_rect.xy, in_rect.zw, in_corner.xz);
     vec3 base = vec3(in_origin.x, in_ground.x, in_origin.y);
     float band_top = min(u_band.y, u_height);
     vec3 box_far = base + vec3(in_size.x, in_ground.y + band_top, in_size.y);
     float near = distance(u_eye, clamp(u_eye, base, box_far));
     float thick = in_plane.w - in_plane.z + band_top;
-    bool slope = in_plane.x != 0.0 || in_plane.y != 0.0;
-    v_follows = slope && thick > FOLLOW_PIXELS * u_pixel * near ? 1.0 : 0.0;
-    vec4 planes = v_follows > 0.5 ? in_plane : vec4(0.0, 0.0, 0.0, in_ground.y);
+    bool slope = (in_plane.x != 0.0 || in_plane.y != 0.0) && thick > FOLLOW_PIXELS * u_pixel * near;
+    bool part = any(notEqual(in_rect, vec4(0.0, 0.0, in_size)));
+    v_follows = slope || part ? 1.0 : 0.0;
+    vec4 planes = slope ? in_plane : vec4(0.0, 0.0, 0.0, in_ground.y);
     float plane = dot(planes.xy, local);
     float y = plane + (in_corner.y > 0.5 ? planes.w + band_top : planes.z);
     v_patch = vec3(local.x, y, local.y);

@@ -95,3 +95,28 @@ def test_an_edit_updates_like_a_full_recomputation(rect):
     occ.update(d, rect)
     full = DensityOccupancy(12, 10, d)
     assert np.array_equal(occ.packed, full.packed)  # cells and every node above them
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(0, 10_000), block=st.sampled_from([(4, 4), (2, 4), (8, 8), (3, 1)]))
+def test_a_block_rectangle_holds_every_cell_with_grass(seed, block):
+    rng = np.random.default_rng(seed)
+    d = sparse_map(rng, 32, 32)
+    occupancy = DensityOccupancy(16, 16, d)
+    w, h = block
+    ix, iz = np.arange(0, 16 - w + 1, w), np.arange(0, 16 - h + 1, h)
+    ix, iz = (a.ravel() for a in np.meshgrid(ix, iz, indexing="ij"))
+    for channel in range(2):
+        rects = occupancy.rects(channel, ix, iz, w, h)
+        grows = occupancy.grows(channel)
+        for (x, z), (x0, z0, x1, z1) in zip(zip(ix, iz, strict=True), rects, strict=True):
+            cells = grows[x : x + w, z : z + h]
+            if not cells.any():
+                assert (x0, z0, x1, z1) == (0, 0, w, h)
+                continue
+            inside = np.zeros_like(cells)
+            inside[int(x0) : int(x1), int(z0) : int(z1)] = True
+            assert not np.any(cells & ~inside)  # every cell with grass lies in the rectangle
+            # and the rectangle is the smallest: each of its edges touches such a cell
+            assert cells[int(x0)].any() and cells[int(x1) - 1].any()
+            assert cells[:, int(z0)].any() and cells[:, int(z1) - 1].any()
