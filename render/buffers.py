@@ -67,12 +67,18 @@ class InstancedRenderer:
 
     def use_program(self, program: moderngl.Program) -> None:
         """Draw with `program` from now on: a variant of the same file (the same inputs), such
-        as its still-air one (render/shaders.py wind_defines). Its vertex array is made anew."""
+        as its still-air one (render/shaders.py wind_defines). The vertex array of the variant
+        before is kept for when it comes back (a frame may switch between variants pass by
+        pass); one for this variant is made when there is none."""
         if program is self.program:
             return
-        self.program = program
+        spare = self.__dict__.setdefault("_spare_vaos", {})
         if self.vao is not None:
-            self._rebuild_vao()
+            spare[self.program] = self.vao
+        self.program = program
+        self.vao = spare.pop(program, None)
+        if self.vao is None and self.instances is not None:
+            self.vao = self._make_vao()
 
     def set_instances(self, instances: np.ndarray) -> None:
         """The cells to draw: an INSTANCE_DTYPE array."""
@@ -87,9 +93,16 @@ class InstancedRenderer:
         self._rebuild_vao()
 
     def _rebuild_vao(self) -> None:
+        """A vertex array for new buffers; those of other variants go (they read the old)."""
+        self._release_vaos()
+        self.vao = self._make_vao()
+
+    def _release_vaos(self) -> None:
+        for vao in self.__dict__.pop("_spare_vaos", {}).values():
+            vao.release()
         if self.vao is not None:
             self.vao.release()
-        self.vao = self._make_vao()
+            self.vao = None
 
     def _make_vao(self) -> moderngl.VertexArray | None:
         raise NotImplementedError

@@ -114,6 +114,7 @@ class GeometryRenderer(InstancedRenderer):
         """Nothing to undo: the shader sets the samples its fragments cover."""
 
     def release(self) -> None:
-        for obj in (self.vao, self.vbo, self.ibo, self.instances, self.blade_texture):
+        self._release_vaos()
+        for obj in (self.vbo, self.ibo, self.instances, self.blade_texture):
             if obj is not None:
                 obj.release()

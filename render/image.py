@@ -53,7 +53,8 @@ class _Batch(InstancedRenderer):
             self.vao.render(moderngl.TRIANGLES, instances=self.instance_count)
 
     def release(self) -> None:
-        for obj in (self.vao, self.instances, self.vbo, self.ibo):
+        self._release_vaos()
+        for obj in (self.instances, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()
 

@@ -136,7 +136,13 @@ class VolumeRenderer(InstancedRenderer):
         t = self.textures
         if t is None:
             return
-        self.use_program(load_program(self.ctx, "volume.glsl", wind_defines(frame.wind.enabled)))
+        # the horizontal slice's height; none in a band pass whose heights leave it out (the
+        # shader would find where its rays cross it only to count nothing there)
+        floor = -1.0 if self.floor is None else self.floor * float(t.height)
+        if not self.band[0] <= floor < min(self.band[1], float(t.height) + 1.0):
+            floor = -1.0
+        defines = wind_defines(frame.wind.enabled) + (("FLOOR",) if floor >= 0.0 else ())
+        self.use_program(load_program(self.ctx, "volume.glsl", defines))
         p = self.program
         frame.apply(p, self.technique_color)
         p["u_ground"].value = GROUND_UNIT + self.density_channel
@@ -146,30 +152,16 @@ class VolumeRenderer(InstancedRenderer):
         if "u_fade" in p:  # the transitions' distances, per blade or sample (_lod.glsl)
             p["u_fade"].value = self.fade
         p["u_side_spread"].write(spread_levels(t.sides.spread))
-        p["u_top_spread"].write(spread_levels(t.top.spread))
         p["u_slices"].value = float(self.slices)
         p["u_max_steps"].value = self.max_steps
         p["u_opaque"].value = self.opaque
         p["u_band"].value = (self.band[0], min(self.band[1], 1e9))
-        # the blades' depth from the side over the pass's heights (volume.glsl missed_blades)
-        top = min(self.band[1], float(t.height))
-        column = t.canopy.side_column(self.band[0]) - t.canopy.side_column(top)
-        p["u_band_column"].value = max(column, 0.0)
-        p["u_side_colors"].write(np.ascontiguousarray(t.canopy.side_colors, np.float32))
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         p["u_lod_scale"].value = pixel * t.sides.color.width
         p["u_pixel"].value = pixel
-        # the horizontal slice's height; none in a band pass whose heights leave it out (the
-        # shader would find where its rays cross it only to count nothing there)
-        floor = -1.0 if self.floor is None else self.floor * float(t.height)
-        if not self.band[0] <= floor < min(self.band[1], float(t.height) + 1.0):
-            floor = -1.0
-        p["u_floor"].value = floor
-        p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
-        if self.floor is not None:  # AO_blade of what the horizontal slice shows
-            p["u_floor_shade"].value = t.canopy.top_shade(frame.lighting.blade_ao_height)
+        if floor >= 0.0:  # the horizontal slice and the run the crossings leave uncounted
+            self._floor_uniforms(floor, frame)
         p["u_skip_steps"].value = self.skip_steps
-        p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
         # how short averaging makes a normal at most (shaders/volume.glsl blends by it)
         p["u_side_mean_length"].value = min(float(np.linalg.norm(t.sides.mean_normal)), 0.99)
         if self.facing is not None:
@@ -187,11 +179,28 @@ class VolumeRenderer(InstancedRenderer):
                 ("u_side_depths", t.sides.depths),  # unit 4: free (render/uniforms.py)
             ]
         ):
-            p[name].value = unit
-            tex.use(unit)
+            if name in p:  # a pass without the horizontal slice reads no top view
+                p[name].value = unit
+                tex.use(unit)
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE | moderngl.BLEND)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
         self.ctx.fbo.depth_mask = False
+
+    def _floor_uniforms(self, floor: float, frame: FrameUniforms) -> None:
+        """What a pass with the horizontal slice reads of it: its height, its top view's
+        spread and mip offset, AO_blade of what it shows, the grass beneath, and the blades'
+        depth and colour from the side over the pass's heights (volume.glsl missed_blades)."""
+        p, t = self.program, self.textures
+        assert t is not None
+        p["u_floor"].value = floor
+        p["u_top_spread"].write(spread_levels(t.top.spread))
+        p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
+        p["u_floor_shade"].value = t.canopy.top_shade(frame.lighting.blade_ao_height)
+        p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
+        top = min(self.band[1], float(t.height))
+        column = t.canopy.side_column(self.band[0]) - t.canopy.side_column(top)
+        p["u_band_column"].value = max(column, 0.0)
+        p["u_side_colors"].write(np.ascontiguousarray(t.canopy.side_colors, np.float32))
 
     def draw(self) -> None:
         if self.vao is not None and self.textures is not None and self.instance_count:
@@ -203,7 +212,8 @@ class VolumeRenderer(InstancedRenderer):
         self.ctx.blend_func = moderngl.DEFAULT_BLENDING
 
     def release(self) -> None:
-        for obj in (self.vao, self.instances, self.plane_buffer, self.vbo, self.ibo):
+        self._release_vaos()
+        for obj in (self.instances, self.plane_buffer, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()
         if self.textures is not None and self._owned:

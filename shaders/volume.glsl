@@ -111,6 +111,14 @@ uniform float u_top_spread[SPREAD_LEVELS];
 uniform float u_top_lod_offset; // log2(top slice width / vertical slice width)
 uniform float u_side_mean_length;  // length of the vertical slices' mean normal (smallest level)
 uniform float u_floor;         // height of the horizontal slice inside the volume (< 0: none)
+// whether the pass has the horizontal slice at all: a define, not the sign of u_floor alone
+// (render/volume.py), for a CPU renderer runs the search for it, its sample and the run it
+// leaves uncounted in every fragment, whichever way their branches go
+#if defined FLOOR
+const bool HAS_FLOOR = true;
+#else
+const bool HAS_FLOOR = false;
+#endif
 uniform vec4 u_under;          // the density channels of the grass types beneath (render/volume.py)
 // the mean of 1 − smoothstep(0, B_height, y) over the heights y the horizontal slice shows
 // (core/canopy.py Canopy.top_shade): AO_blade of what it shows
@@ -329,7 +337,7 @@ void main() {
     // the landscape's hill, seen from its valley, where a ray entered the grass just before
     // the wall (docs/far-field.md).
     float descent = d.y - dot(0.5 * slope, d.xz);
-    float floor_lambda = (u_floor >= 0.0 && descent < -1e-4 && e.y > floor_y)
+    float floor_lambda = (HAS_FLOOR && u_floor >= 0.0 && descent < -1e-4 && e.y > floor_y)
                        ? (floor_y - e.y) / descent : 1e30;
     if (floor_lambda < 1e29) {
         float a = 0.0, ha = e.y - floor_y, b = floor_lambda, hb = -1.0;

@@ -23,12 +23,13 @@ EXPECTED = {
         "u_slices",
         "u_side_color",
         "u_side_data",
-        "u_top_color",
         "u_design_far",
         "in_corner",
         "in_size",
         "in_mirror",
         "in_config",
+        "in_plane",
+        "in_rect",
     },
     "image.glsl": {
         "u_view_proj",
@@ -52,6 +53,12 @@ EXPECTED = {
 def test_every_shader_compiles_with_expected_inputs(ctx, name, wind):
     program = load_program(ctx, name, wind_defines(wind))
     assert EXPECTED.get(name, set()) <= set(program)
+
+
+def test_volume_pass_with_the_horizontal_slice_reads_it_and_one_without_does_not(ctx):
+    floor = {"u_floor", "u_top_color", "u_top_data", "u_floor_shade", "u_band_column"}
+    assert floor <= set(load_program(ctx, "volume.glsl", ("FLOOR",)))
+    assert not floor & set(load_program(ctx, "volume.glsl"))
 
 
 def test_wind_variant_is_its_own_program_and_reads_the_wind(ctx):
