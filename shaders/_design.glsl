@@ -12,19 +12,21 @@ vec3 design_diffuse(vec2 uv) { return textureLod(u_design, vec3(uv, 3.0), 0.0).r
 // and dy; its mipmapped copy, render/design_maps.py): a far representation's fragment covers
 // many texels, and a marking a texel wide read at the base level broke into dots. Seen at a
 // grazing angle the footprint is long and thin: the colour is the mean of taps along its long
-// axis, as many as it is times longer than wide (up to 4), each as wide as the short axis (the
-// texture's own anisotropic filter drew saw teeth beside the lines on llvmpipe; one tap at the
-// long axis's mip level washed the far lines out).
+// axis, as many as it is times longer than wide (up to 4) but no more than the texels it spans
+// (a footprint within a texel reads the bilinear surface at one point as well as at four),
+// each as wide as the short axis (the texture's own anisotropic filter drew saw teeth beside
+// the lines on llvmpipe; one tap at the long axis's mip level washed the far lines out).
 uniform sampler2DArray u_design_far;  // the colour map, RGB times its weight
 const int DESIGN_TAPS = 4;
 vec4 design_color_at(vec2 uv, vec2 dx, vec2 dy) {
     bool x_long = dot(dx, dx) > dot(dy, dy);
     vec2 major = x_long ? dx : dy;
     vec2 minor = x_long ? dy : dx;
-    int taps = int(clamp(ceil(length(major) / max(length(minor), 1e-9)), 1.0, float(DESIGN_TAPS)));
+    vec2 size = vec2(textureSize(u_design_far, 0).xy);
+    float along = min(length(major) / max(length(minor), 1e-9), length(major * size));
+    int taps = int(clamp(ceil(along), 1.0, float(DESIGN_TAPS)));
     // every tap's footprint is major / taps by minor: one mip level for all of them, as
     // textureGrad would take it from those sides (the longer one's texels)
-    vec2 size = vec2(textureSize(u_design_far, 0).xy);
     float lod = log2(max(max(length(major * size) / float(taps), length(minor * size)), 1e-9));
     vec4 c = vec4(0.0);
     for (int k = 0; k < taps; ++k) {
