@@ -104,15 +104,19 @@ class Terrain:
         """The whole ground's bound (core/heights.py ground_curvature; 0: flat)."""
         return float(self.bends[-1].max())
 
+    def blocks_of(self, instances: np.ndarray) -> tuple[np.ndarray, ...]:
+        """Per instance (INSTANCE_DTYPE), its first cell and its extent in cells: (ix, iz, sx,
+        sz) integer arrays, the first cell within the terrain, the extent at least one."""
+        ix = np.rint(instances["origin"][:, 0] - self.origin[0]).astype(np.int64)
+        iz = np.rint(instances["origin"][:, 1] - self.origin[1]).astype(np.int64)
+        sx = np.maximum(np.rint(instances["size"][:, 0]).astype(np.int64), 1)
+        sz = np.maximum(np.rint(instances["size"][:, 1]).astype(np.int64), 1)
+        return np.clip(ix, 0, self.columns - 1), np.clip(iz, 0, self.rows - 1), sx, sz
+
     def curvature_of(self, instances: np.ndarray) -> np.ndarray:
         """Per instance (INSTANCE_DTYPE), a bound on the bends of the ground it covers (core/
         heights.py cell_curvature), for the grids its image-based slice is drawn with."""
-        ix = np.rint(instances["origin"][:, 0] - self.origin[0]).astype(np.int64)
-        iz = np.rint(instances["origin"][:, 1] - self.origin[1]).astype(np.int64)
-        sx = np.rint(instances["size"][:, 0]).astype(np.int64)
-        sz = np.rint(instances["size"][:, 1]).astype(np.int64)
-        ix, iz = np.clip(ix, 0, self.columns - 1), np.clip(iz, 0, self.rows - 1)
-        return blocks_max(self.bends, ix, iz, np.maximum(sx, 1), np.maximum(sz, 1))
+        return blocks_max(self.bends, *self.blocks_of(instances))
 
     def planes_of(self, instances: np.ndarray) -> np.ndarray:
         """Per instance (INSTANCE_DTYPE), (n, 4) float32: the ground's slope along x and z per
@@ -125,11 +129,7 @@ class Terrain:
         out[:, 3] = instances["ground"][:, 1]
         if self.corner_heights is None or not len(instances):
             return out
-        ix = np.rint(instances["origin"][:, 0] - self.origin[0]).astype(np.int64)
-        iz = np.rint(instances["origin"][:, 1] - self.origin[1]).astype(np.int64)
-        sx = np.maximum(np.rint(instances["size"][:, 0]).astype(np.int64), 1)
-        sz = np.maximum(np.rint(instances["size"][:, 1]).astype(np.int64), 1)
-        ix, iz = np.clip(ix, 0, self.columns - 1), np.clip(iz, 0, self.rows - 1)
+        ix, iz, sx, sz = self.blocks_of(instances)
         planes = np.empty_like(out)
         sizes = sx * (self.rows + 1) + sz
         for key in np.unique(sizes):

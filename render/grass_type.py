@@ -187,6 +187,12 @@ class GrassTypeRenderer:
                 renderer.planes = None
                 if terrain is not None:
                     renderer.planes = carriers(terrain, occupancy, self.density_channel, instances)
+            elif representation == "image":
+                rects = None
+                if terrain is not None and occupancy is not None and instances.size:
+                    blocks = terrain.blocks_of(instances)
+                    rects = occupancy.rects(self.density_channel, *blocks)
+                renderer.set_instances(instances, rects)
             else:
                 renderer.set_instances(instances)
             if representation != "geometry":  # blades stand in single cells: their own w

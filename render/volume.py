@@ -42,12 +42,7 @@ def carriers(
     out[:, 4:6] = 0.0
     out[:, 6:] = instances["size"]
     if occupancy is not None and len(instances):
-        ix = np.rint(instances["origin"][:, 0] - terrain.origin[0]).astype(np.int64)
-        iz = np.rint(instances["origin"][:, 1] - terrain.origin[1]).astype(np.int64)
-        sx = np.maximum(np.rint(instances["size"][:, 0]).astype(np.int64), 1)
-        sz = np.maximum(np.rint(instances["size"][:, 1]).astype(np.int64), 1)
-        ix, iz = np.clip(ix, 0, terrain.columns - 1), np.clip(iz, 0, terrain.rows - 1)
-        out[:, 4:] = occupancy.rects(channel, ix, iz, sx, sz)
+        out[:, 4:] = occupancy.rects(channel, *terrain.blocks_of(instances))
     return out
 
 

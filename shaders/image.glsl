@@ -27,6 +27,9 @@ uniform mat4 u_view_proj;
 uniform float u_lift;          // height of the slice above the ground
 
 in vec2 in_corner;             // unit square corner
+// per instance: the rectangle (x0, z0, x1, z1), in cells from its corner, where its grass can
+// grow (render/image.py): the slice keeps to it
+in vec4 in_rect;
 in vec2 in_origin;             // per instance
 in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
@@ -54,7 +57,7 @@ flat out vec2 v_mirror;
 flat out vec2 v_origin;
 
 void main() {
-    v_patch = in_corner * in_size;
+    v_patch = mix(in_rect.xy, in_rect.zw, in_corner);
     v_design = design_uv(in_config, v_patch);
     v_density = in_cell_density;
     v_lod = in_lod;

@@ -34,3 +34,28 @@ def test_bare_cells_are_not_drawn_and_the_image_is_unchanged(half_bare):
     maps.write("density", 0, 0, np.ones((maps.size[1], maps.size[0])))
     _, repainted = headless.render(camera, (320, 240))
     assert repainted.c_g + repainted.c_v + repainted.c_i == full.c_g + full.c_v + full.c_i
+
+
+def test_slices_and_cuboids_keep_to_the_cells_where_their_grass_grows(headless, monkeypatch):
+    """The meadow's tall grass grows in clumps: its image-based slices and volume cuboids keep
+    to the rectangle of each block's cells where it can grow (core/occupancy.py rects), and
+    the frame is the one they draw over their whole blocks."""
+    from benchmarks.references import quarter
+    from core.image_diff import flip
+    from core.occupancy import DensityOccupancy
+
+    def frame():
+        document = get_scene("meadow").document()
+        return headless(document).render(document.camera("default"), (320, 240))[0]
+
+    kept = frame()
+
+    def whole_blocks(self, channel, ix, iz, sx, sz):
+        out = np.zeros((np.size(ix), 4), np.float32)
+        out[:, 2], out[:, 3] = sx, sz
+        return out
+
+    monkeypatch.setattr(DensityOccupancy, "rects", whole_blocks)
+    whole = frame()
+    moved, _ = flip(quarter(whole), quarter(kept))
+    assert moved < 0.002

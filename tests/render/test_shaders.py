@@ -37,6 +37,7 @@ EXPECTED = {
         "u_top_data",
         "u_design",
         "in_corner",
+        "in_rect",
         "in_size",
         "in_mirror",
         "in_config",
