@@ -64,6 +64,13 @@ class InstancedRenderer:
     instances: moderngl.Buffer | None
     vao: moderngl.VertexArray | None
     instance_count: int
+    # a second per-instance buffer of float32 rows some renderers draw with: its layout
+    # ("4f 4f/i", attribute names), and its rows where set_instances is given none
+    rows_layout: tuple[str, tuple[str, ...]] | None = None
+    rows_buffer: moderngl.Buffer | None = None
+
+    def default_rows(self, instances: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
 
     def use_program(self, program: moderngl.Program) -> None:
         """Draw with `program` from now on: a variant of the same file (the same inputs), such
@@ -80,17 +87,36 @@ class InstancedRenderer:
         if self.vao is None and self.instances is not None:
             self.vao = self._make_vao()
 
-    def set_instances(self, instances: np.ndarray) -> None:
-        """The cells to draw: an INSTANCE_DTYPE array."""
+    def set_instances(self, instances: np.ndarray, rows: np.ndarray | None = None) -> None:
+        """The cells to draw: an INSTANCE_DTYPE array; with rows_layout, one row of its second
+        buffer per cell (default_rows where None)."""
         if instances.dtype != INSTANCE_DTYPE:
             raise TypeError("instances must be an INSTANCE_DTYPE array")
         self.instance_count = int(instances.size)
+        fresh = False
+        if self.rows_layout is not None:
+            rows = self.default_rows(instances) if rows is None else rows
+            if len(rows) != instances.size:
+                raise ValueError("one row of the second buffer per instance")
+            data = rows if len(rows) else np.zeros((1, rows.shape[1]), np.float32)
+            buf = upload(self.ctx, self.rows_buffer, np.asarray(data, np.float32), grow_only=True)
+            fresh = buf is not self.rows_buffer
+            self.rows_buffer = buf
         data = instances if instances.size else np.zeros(1, INSTANCE_DTYPE)
         buf = upload(self.ctx, self.instances, data, grow_only=True)
-        if buf is self.instances:
-            return
-        self.instances = buf
-        self._rebuild_vao()
+        if buf is not self.instances or fresh:
+            self.instances = buf
+            self._rebuild_vao()
+
+    def _buffers(self, corners: tuple) -> list[tuple]:
+        """The vertex array's buffers: the mesh's `corners` entry, the instances and the
+        second buffer's attributes that the program reads."""
+        out = [corners, instance_layout(self.program, self.instances)]
+        if self.rows_layout is not None and self.rows_buffer is not None:
+            fmt, names = self.rows_layout
+            if all(name in self.program for name in names):
+                out.append((self.rows_buffer, fmt, *names))
+        return out
 
     def _rebuild_vao(self) -> None:
         """A vertex array for new buffers; those of other variants go (they read the old)."""

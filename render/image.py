@@ -14,7 +14,7 @@ from core.canopy import Canopy
 from core.heights import SLICE_GRIDS, slice_grids
 from core.lod import NO_FADE
 from core.terrain import Terrain
-from render.buffers import InstancedRenderer, instance_layout, upload
+from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
 from render.shaders import load_program, wind_defines
@@ -30,6 +30,9 @@ from render.uniforms import FrameUniforms
 class _Batch(InstancedRenderer):
     """Instances drawn with one mesh (a grid of n × n quads per instance)."""
 
+    # per cell, the rectangle of it (x0, z0, x1, z1 in cells from its corner) its slice keeps to
+    rows_layout = ("4f/i", ("in_rect",))
+
     def __init__(self, ctx: moderngl.Context, program: moderngl.Program, n: int) -> None:
         self.ctx = ctx
         self.program = program
@@ -37,30 +40,20 @@ class _Batch(InstancedRenderer):
         self.vbo = ctx.buffer(verts.tobytes())
         self.ibo = ctx.buffer(indices.tobytes())
         self.instances: moderngl.Buffer | None = None
-        self.rect_buffer: moderngl.Buffer | None = None
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
 
-    def set_instances(self, instances: np.ndarray, rects: np.ndarray | None = None) -> None:
-        """The cells to draw and, per cell, the rectangle of it its slice covers (x0, z0, x1,
-        z1 in cells from its corner; None: the whole cell)."""
-        if rects is None:
-            rects = np.zeros((instances.size, 4), np.float32)
-            rects[:, 2:] = instances["size"]
-        data = np.ascontiguousarray(rects if len(rects) else np.zeros((1, 4)), np.float32)
-        buf = upload(self.ctx, self.rect_buffer, data, grow_only=True)
-        fresh = buf is not self.rect_buffer
-        self.rect_buffer = buf
-        super().set_instances(instances)
-        if fresh and self.instances is not None:
-            self._rebuild_vao()
+    def default_rows(self, instances: np.ndarray) -> np.ndarray:
+        rects = np.zeros((instances.size, 4), np.float32)
+        rects[:, 2:] = instances["size"]
+        return rects
 
     def _make_vao(self) -> moderngl.VertexArray:
-        buffers = [(self.vbo, "2f", "in_corner"), instance_layout(self.program, self.instances)]
-        if self.rect_buffer is not None and "in_rect" in self.program:
-            buffers.append((self.rect_buffer, "4f/i", "in_rect"))
         return self.ctx.vertex_array(
-            self.program, buffers, index_buffer=self.ibo, index_element_size=4
+            self.program,
+            self._buffers((self.vbo, "2f", "in_corner")),
+            index_buffer=self.ibo,
+            index_element_size=4,
         )
 
     def draw(self) -> None:
@@ -69,7 +62,7 @@ class _Batch(InstancedRenderer):
 
     def release(self) -> None:
         self._release_vaos()
-        for obj in (self.instances, self.rect_buffer, self.vbo, self.ibo):
+        for obj in (self.instances, self.rows_buffer, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()
 
@@ -152,9 +145,6 @@ class ImageRenderer:
         """The cells to draw: an INSTANCE_DTYPE array, split by the grid their ground needs;
         `rects`: per cell, the rectangle of it where its grass can grow (render/volume.py
         carriers; None: the whole cell), which its slice keeps to."""
-        if rects is None:
-            rects = np.zeros((instances.size, 4), np.float32)
-            rects[:, 2:] = instances["size"]
         finest = SLICE_GRIDS[-1]
         grids = np.full(instances.size, finest, np.int32)
         if self.view is not None and instances.size:
@@ -163,7 +153,7 @@ class ImageRenderer:
             grids = slice_grids(instances, eye, pixel, bends)
         grids[instances["ground"][:, 1] <= self.flat_ground] = 1
         for n, batch in self.batches.items():
-            batch.set_instances(instances[grids == n], rects[grids == n])
+            batch.set_instances(instances[grids == n], None if rects is None else rects[grids == n])
         self.instance_count = int(instances.size)
 
     def prepare(self, frame: FrameUniforms) -> None:

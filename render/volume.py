@@ -16,7 +16,7 @@ import numpy as np
 from core.lod import NO_FADE
 from core.occupancy import DensityOccupancy
 from core.terrain import Terrain
-from render.buffers import InstancedRenderer, instance_layout, upload
+from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.shaders import load_program, wind_defines
 from render.slices import SliceTextures, spread_levels
@@ -72,6 +72,8 @@ class VolumeRenderer(InstancedRenderer):
     # planes_of), and the rectangle where the grass grows in it (carriers): the cuboid's
     # bottom and top follow the slope, its walls that rectangle; None: level, whole cuboids
     planes: np.ndarray | None = None
+    # the second instance buffer: those planes and that rectangle (render/buffers.py)
+    rows_layout = ("4f 4f/i", ("in_plane", "in_rect"))
 
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
@@ -79,7 +81,6 @@ class VolumeRenderer(InstancedRenderer):
         self.vbo = ctx.buffer(_CORNERS.tobytes())
         self.ibo = ctx.buffer(_FACES.tobytes())
         self.instances: moderngl.Buffer | None = None
-        self.plane_buffer: moderngl.Buffer | None = None
         self.vao: moderngl.VertexArray | None = None
         self.instance_count = 0
         self.textures: SliceTextures | None = None
@@ -101,30 +102,19 @@ class VolumeRenderer(InstancedRenderer):
         """The planes of `cells[part]` (None with level cuboids)."""
         return None if self.planes is None else self.planes[part]
 
-    def set_instances(self, instances: np.ndarray, planes: np.ndarray | None = None) -> None:
-        """The cells to draw and, per cell, the planes its cuboid lies between (core/terrain.py
-        planes_of; None: from its lowest ground over its height range)."""
-        if planes is None:
-            planes = np.zeros((max(instances.size, 1), 8), np.float32)
-            if instances.size:
-                planes[:, 3] = instances["ground"][:, 1]
-                planes[:, 6:] = instances["size"]
-        elif planes.shape != (instances.size, 8):
-            raise ValueError("one row of planes and rectangle per instance")
-        data = np.ascontiguousarray(planes if len(planes) else np.zeros((1, 8)), np.float32)
-        buf = upload(self.ctx, self.plane_buffer, data, grow_only=True)
-        fresh = buf is not self.plane_buffer
-        self.plane_buffer = buf
-        super().set_instances(instances)
-        if fresh and self.instances is not None:
-            self._rebuild_vao()
+    def default_rows(self, instances: np.ndarray) -> np.ndarray:
+        """Level cuboids over each cell's height range and over the whole cell."""
+        rows = np.zeros((instances.size, 8), np.float32)
+        rows[:, 3] = instances["ground"][:, 1]
+        rows[:, 6:] = instances["size"]
+        return rows
 
     def _make_vao(self) -> moderngl.VertexArray:
-        buffers = [(self.vbo, "3f", "in_corner"), instance_layout(self.program, self.instances)]
-        if self.plane_buffer is not None and "in_plane" in self.program:
-            buffers.append((self.plane_buffer, "4f 4f/i", "in_plane", "in_rect"))
         return self.ctx.vertex_array(
-            self.program, buffers, index_buffer=self.ibo, index_element_size=4
+            self.program,
+            self._buffers((self.vbo, "3f", "in_corner")),
+            index_buffer=self.ibo,
+            index_element_size=4,
         )
 
     def prepare(self, frame: FrameUniforms) -> None:
@@ -208,7 +198,7 @@ class VolumeRenderer(InstancedRenderer):
 
     def release(self) -> None:
         self._release_vaos()
-        for obj in (self.instances, self.plane_buffer, self.vbo, self.ibo):
+        for obj in (self.instances, self.rows_buffer, self.vbo, self.ibo):
             if obj is not None:
                 obj.release()
         if self.textures is not None and self._owned:
