@@ -51,6 +51,21 @@ def _lines(cells: int, texels: int) -> tuple[np.ndarray, np.ndarray]:
     return lines, np.searchsorted(lines, borders)
 
 
+def _crossings(shape: tuple[int, int], columns: int, rows: int):
+    """The grid where cell borders and texel-centre lines cross (_lines, each axis) and the
+    bands of cell rows sampled at a time (about 4 M samples each): (xs, x_starts, zs,
+    z_starts, [(first row, end row, first z line, last z line), ...])."""
+    h, w = shape
+    xs, x_starts = _lines(columns, w)
+    zs, z_starts = _lines(rows, h)
+    band = max(1, 4_000_000 // max(xs.size * max(zs.size // rows, 1), 1))
+    bands = [
+        (r0, min(r0 + band, rows), z_starts[r0], z_starts[min(r0 + band, rows)])
+        for r0 in range(0, rows, band)
+    ]
+    return xs, x_starts, zs, z_starts, bands
+
+
 def block_extremes(values: np.ndarray, starts: np.ndarray, axis: int):
     """Min and max of `values` over each inclusive run [starts[i], starts[i + 1]] on `axis`."""
     lo = np.minimum.reduceat(values, starts[:-1], axis=axis)
@@ -69,16 +84,11 @@ def cell_ranges(
     margin covers float rounding). Those crossings form one grid for the whole terrain (every
     cell border and texel-centre line on each axis), sampled once, a band of cell rows at a
     time; each cell takes the extremes of its block of the grid."""
-    h, w = heights.shape
-    xs, x_starts = _lines(columns, w)
-    zs, z_starts = _lines(rows, h)
+    xs, x_starts, zs, z_starts, bands = _crossings(heights.shape, columns, rows)
     lo = np.empty((columns, rows), np.float32)
     hi = np.empty((columns, rows), np.float32)
     margin = 1e-4 * max(scale, 1.0)
-    band = max(1, 4_000_000 // max(xs.size * max(zs.size // rows, 1), 1))
-    for r0 in range(0, rows, band):
-        r1 = min(r0 + band, rows)
-        a, b = z_starts[r0], z_starts[r1]
+    for r0, r1, a, b in bands:
         # rounding to float32 keeps the order of values, so the extremes of the rounded samples
         # are the rounded extremes (half the memory traffic for the reductions)
         s = (bilinear_grid(heights, xs, zs[a : b + 1]) * scale).astype(np.float32)
@@ -242,9 +252,7 @@ def corner_deviations(
     ((columns, rows) each), the least and the most the ground inside it lies above the
     bilinear blend of its four corners: sampled where cell_ranges samples, which is exact for
     the difference too (the blend is bilinear over the whole cell), with cell_ranges' margin."""
-    h, w = heights.shape
-    xs, x_starts = _lines(columns, w)
-    zs, z_starts = _lines(rows, h)
+    xs, x_starts, zs, z_starts, bands = _crossings(heights.shape, columns, rows)
     corners = bilinear_grid(heights, xs[x_starts], zs[z_starts]) * scale  # (columns + 1, rows + 1)
     # each x line's cell and its fraction across it (a border line: the cell it ends)
     cell_x = np.minimum(np.searchsorted(xs[x_starts], xs, side="right") - 1, columns - 1)
@@ -252,10 +260,7 @@ def corner_deviations(
     lo = np.empty((columns, rows), np.float32)
     hi = np.empty((columns, rows), np.float32)
     margin = 1e-4 * max(scale, 1.0)
-    band = max(1, 4_000_000 // max(xs.size * max(zs.size // rows, 1), 1))
-    for r0 in range(0, rows, band):
-        r1 = min(r0 + band, rows)
-        a, b = z_starts[r0], z_starts[r1]
+    for r0, r1, a, b in bands:
         z = zs[a : b + 1]
         cell_z = np.minimum(np.searchsorted(zs[z_starts], z, side="right") - 1, rows - 1)
         fz = (z * rows - cell_z)[None, :]
