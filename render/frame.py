@@ -413,12 +413,13 @@ class FramePipeline:
         self.wind_noise.use()
 
         drawn = []
+        occupancy = self.occupancy()  # up to date with the density map, or None when not used
         pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
         terrain = self.terrain
         for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
             grass.image.view = (frame.eye, pixel, terrain)  # its slices' grids
             tu = time.perf_counter()
-            batches = grass.upload(selected, frame.eye, self.terrain, self._occupancy)
+            batches = grass.upload(selected, frame.eye, self.terrain, occupancy)
             stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
             drawn.append(batches)
             for (representation, slices), (_renderer, count) in batches.items():

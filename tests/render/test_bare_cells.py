@@ -59,3 +59,30 @@ def test_slices_and_cuboids_keep_to_the_cells_where_their_grass_grows(headless, 
     whole = frame()
     moved, _ = flip(quarter(whole), quarter(kept))
     assert moved < 0.002
+
+
+def test_grass_painted_into_a_bare_block_is_drawn_at_once(headless):
+    """Tall grass painted where the meadow had none: the blocks it reaches draw it at once
+    (their cuboids and slices keep to the cells that can now grow it), as the frame that
+    skips nothing does: the two differ no more than before the stroke (where a bare cell's
+    rays no longer run on into its neighbour)."""
+    doc = get_scene("meadow").document()
+    renderer = headless(doc)
+    camera = doc.camera("default")
+
+    def skipped_against_full() -> float:
+        renderer.pipeline.skip_bare_cells = True
+        image, _ = renderer.render(camera, (320, 240))
+        renderer.pipeline.skip_bare_cells = False
+        full_image, _ = renderer.render(camera, (320, 240))
+        renderer.pipeline.skip_bare_cells = True
+        return float((np.abs(image.astype(int) - full_image.astype(int)).max(axis=-1) > 2).mean())
+
+    before = skipped_against_full()
+    assert before < 0.003
+    density = doc.maps.layer("density")
+    w, h = doc.maps.size
+    patch = density[h // 2 : h // 2 + h // 16, w // 3 : w // 3 + w // 3].copy()
+    patch[..., 1] = 1.0  # the tall grass's channel
+    doc.maps.write("density", w // 3, h // 2, patch)
+    assert skipped_against_full() < before + 0.0005
