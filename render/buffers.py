@@ -6,6 +6,7 @@ import moderngl
 import numpy as np
 
 from core.grid import INSTANCE_DTYPE
+from render.shaders import reads
 
 # (attribute, float count) in the order of core.grid.INSTANCE_DTYPE's fields.
 INSTANCE_ATTRIBUTES = (
@@ -42,7 +43,7 @@ def layout(
     """A vertex-array entry that skips the attributes the program does not use."""
     parts, names = [], []
     for name, count in attributes:
-        if name in program:
+        if reads(program, name):
             parts.append(f"{count}f")
             names.append(name)
         else:
@@ -114,7 +115,7 @@ class InstancedRenderer:
         out = [corners, instance_layout(self.program, self.instances)]
         if self.rows_layout is not None and self.rows_buffer is not None:
             fmt, names = self.rows_layout
-            if all(name in self.program for name in names):
+            if all(reads(self.program, name) for name in names):
                 out.append((self.rows_buffer, fmt, *names))
         return out
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from core.patch import GrassPatch, blade_texture, draft_indices
 from render.buffers import InstancedRenderer, instance_layout, layout, upload
-from render.shaders import load_program, wind_defines
+from render.shaders import load_program, reads, wind_defines
 from render.uniforms import FrameUniforms
 
 # (attribute, float count) in the order of core.patch.VERTEX_DTYPE.
@@ -87,10 +87,10 @@ class GeometryRenderer(InstancedRenderer):
     def prepare(self, frame: FrameUniforms) -> None:
         self.use_program(load_program(self.ctx, self.file, wind_defines(frame.wind.enabled)))
         frame.apply(self.program, self.technique_color)
-        if "u_density_channel" in self.program:
+        if reads(self.program, "u_density_channel"):
             self.program["u_density_channel"].value = self.density_channel
         self.program["u_density"].value = float(self.density)
-        if "u_cell_size" in self.program:  # where the wind is read: still air does not
+        if reads(self.program, "u_cell_size"):  # where the wind is read: still air does not
             self.program["u_cell_size"].value = 1.0
         self.program["u_alpha_ref"].value = self.alpha_ref
         self.program["u_blade"].value = 0

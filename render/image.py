@@ -17,7 +17,7 @@ from core.terrain import Terrain
 from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
-from render.shaders import load_program, wind_defines
+from render.shaders import load_program, reads, wind_defines
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 
@@ -173,7 +173,7 @@ class ImageRenderer:
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()
-        if "u_grass_height" in p:  # the wind's bend (_wind.glsl): still air reads neither
+        if reads(p, "u_grass_height"):  # the wind's bend (_wind.glsl): still air reads neither
             p["u_grass_height"].value = float(self.textures.height)
             p["u_canopy"].value = self.canopy
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
@@ -190,7 +190,7 @@ class ImageRenderer:
         p["u_top_mean"].value = tuple(float(v) for v in self.textures.top.mean_color)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
-        if "u_fade" in p:  # the transitions' distances, per blade or sample (_lod.glsl)
+        if reads(p, "u_fade"):  # the transitions' distances, per blade or sample (_lod.glsl)
             p["u_fade"].value = self.fade
         p["u_top_spread"].write(spread_levels(self.textures.top.spread))
         p["u_mean_normal"].value = tuple(float(v) for v in self.textures.top.mean_normal)

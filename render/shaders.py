@@ -94,3 +94,9 @@ def load_program(
         raise ShaderError(f"shaders/{name} failed to build:\n{exc}") from exc
     programs[key] = program
     return program
+
+
+def reads(program: moderngl.Program, name: str) -> bool:
+    """Whether `program` has the uniform or attribute `name` (the compiler drops those it does
+    not use). Program has no __contains__: `name in program` walks every member."""
+    return program.get(name, None) is not None

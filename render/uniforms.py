@@ -10,6 +10,7 @@ import numpy as np
 from core.camera import gl_bytes
 from core.lighting import Lighting
 from core.wind import NOISE_FEATURES, Wind
+from render.shaders import reads
 
 DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
 # units of the height + density textures, one a density channel (DesignMapTextures.grounds)
@@ -61,7 +62,7 @@ class FrameUniforms:
             **wind_uniforms(self.wind, self.time),
         }
         for name, value in values.items():
-            if name not in program:
+            if not reads(program, name):
                 continue
             if isinstance(value, bytes):
                 program[name].write(value)

@@ -18,7 +18,7 @@ from core.occupancy import DensityOccupancy
 from core.terrain import Terrain
 from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
-from render.shaders import load_program, wind_defines
+from render.shaders import load_program, reads, wind_defines
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
 
@@ -134,7 +134,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_height"].value = float(t.height)
         p["u_density"].value = float(self.density)
         p["u_epsilon"].value = self.epsilon
-        if "u_fade" in p:  # the transitions' distances, per blade or sample (_lod.glsl)
+        if reads(p, "u_fade"):  # the transitions' distances, per blade or sample (_lod.glsl)
             p["u_fade"].value = self.fade
         p["u_side_spread"].write(spread_levels(t.sides.spread))
         p["u_slices"].value = float(self.slices)
@@ -164,7 +164,7 @@ class VolumeRenderer(InstancedRenderer):
                 ("u_side_depths", t.sides.depths),  # unit 4: free (render/uniforms.py)
             ]
         ):
-            if name in p:  # a pass without the horizontal slice reads no top view
+            if reads(p, name):  # a pass without the horizontal slice reads no top view
                 p[name].value = unit
                 tex.use(unit)
         self.ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE | moderngl.BLEND)
