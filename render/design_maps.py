@@ -35,6 +35,7 @@ from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
 COLOR = LAYER_INDEX["color"]
+LIGHT_LAYERS = (LAYER_INDEX["ambient"], LAYER_INDEX["diffuse"])
 
 
 @dataclass(frozen=True)
@@ -89,6 +90,9 @@ class DesignMapTextures:
         self._sinks: list[moderngl.Texture] = []
         self._excess: list[np.ndarray] = []
         self._chunks: GroundChunks | None = None
+        # whether a light map holds anything but ones (FrameUniforms.light_maps): checked once,
+        # and from the first edit of either on, painted (an undo back to ones keeps it so)
+        self.light_maps = any(bool(np.any(maps.stack[i][..., :3] != 1.0)) for i in LIGHT_LAYERS)
         maps.changed.connect(self.update)
 
     def _far_texels(self, rect: Rect) -> bytes:
@@ -181,6 +185,8 @@ class DesignMapTextures:
         if rect[2] > 0 and rect[3] > 0:
             i = LAYER_INDEX[name]
             self.pending[i] = union(self.pending.get(i), rect)
+            if i in LIGHT_LAYERS:
+                self.light_maps = True
 
     def flush(self) -> None:
         """Upload the dirty rectangle of every edited map (the context must be current)."""

@@ -364,6 +364,7 @@ class FramePipeline:
             wind=self.wind,
             time=self.time,
             draft=draft,
+            light_maps=self.map_textures.light_maps,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None

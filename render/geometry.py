@@ -11,7 +11,7 @@ import numpy as np
 
 from core.patch import GrassPatch, blade_texture, draft_indices
 from render.buffers import InstancedRenderer, instance_layout, layout, upload
-from render.shaders import load_program, reads, wind_defines
+from render.shaders import load_program, reads
 from render.uniforms import FrameUniforms
 
 # (attribute, float count) in the order of core.patch.VERTEX_DTYPE.
@@ -85,7 +85,7 @@ class GeometryRenderer(InstancedRenderer):
 
     # -- the three passes --------------------------------------------------------------------
     def prepare(self, frame: FrameUniforms) -> None:
-        self.use_program(load_program(self.ctx, self.file, wind_defines(frame.wind.enabled)))
+        self.use_program(load_program(self.ctx, self.file, frame.defines))
         frame.apply(self.program, self.technique_color)
         if reads(self.program, "u_density_channel"):
             self.program["u_density_channel"].value = self.density_channel

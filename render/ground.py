@@ -112,10 +112,12 @@ class GroundRenderer:
         self.program = load_program(ctx, "ground.glsl")
         corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype=np.float32)
         self.vbo = ctx.buffer(corners.tobytes())
-        self.vao = ctx.vertex_array(self.program, [(self.vbo, "2f", "in_corner")])
+        # the plane's vertex array for each program variant drawn with (the light maps' define)
+        self._plane: dict[moderngl.Program, moderngl.VertexArray] = {}
         # the grid over the grassed cells at each of its levels (core/ground_mesh.py mesh_levels),
-        # in chunks: quads, vertex array and its buffers, each chunk's run of indices
-        self.meshes: dict[tuple[int, int], tuple[moderngl.VertexArray, list, np.ndarray]] = {}
+        # in chunks: quads -> its buffers, each chunk's run of indices and a vertex array per
+        # program variant
+        self.meshes: dict[tuple[int, int], tuple[list, np.ndarray, dict]] = {}
         self.chunks_drawn: np.ndarray | None = None  # each chunk's level last frame (-1: none)
         self.grass_rect = (0.0, 0.0, 0.0, 0.0)
         # the soil under the grass, shaded by it (diagnostics draw it black to see the grass)
@@ -124,23 +126,23 @@ class GroundRenderer:
     def _mesh(self, quads: tuple[int, int]) -> tuple[moderngl.VertexArray, np.ndarray]:
         if quads not in self.meshes:
             verts, indices, ranges = chunked_mesh(*quads, GROUND_CHUNKS)
-            vbo = self.ctx.buffer(verts.tobytes())
-            ibo = self.ctx.buffer(indices.tobytes())
-            vao = self.ctx.vertex_array(
+            buffers = [self.ctx.buffer(verts.tobytes()), self.ctx.buffer(indices.tobytes())]
+            self.meshes[quads] = (buffers, ranges, {})
+        (vbo, ibo), ranges, vaos = self.meshes[quads]
+        if self.program not in vaos:
+            vaos[self.program] = self.ctx.vertex_array(
                 self.program,
                 [(vbo, "2f 1f", "in_corner", "in_drop")],
                 index_buffer=ibo,
                 index_element_size=4,
             )
-            self.meshes[quads] = (vao, [vbo, ibo], ranges)
-        vao, _, ranges = self.meshes[quads]
-        return vao, ranges
+        return vaos[self.program], ranges
 
     def _release_mesh(self, keep: list[tuple[int, int]] | None = None) -> None:
         """Release the meshes of every level (but those of `keep`)."""
         for quads in [q for q in self.meshes if keep is None or q not in keep]:
-            vao, buffers, _ = self.meshes.pop(quads)
-            for obj in (vao, *buffers):
+            buffers, _, vaos = self.meshes.pop(quads)
+            for obj in (*vaos.values(), *buffers):
                 obj.release()
 
     def _draw_mesh(self, frame: FrameUniforms, maps: DesignMapTextures) -> None:
@@ -180,6 +182,13 @@ class GroundRenderer:
     def draw(self, frame: FrameUniforms, maps: DesignMapTextures | None = None) -> None:
         """The plane, and on uneven ground (with `maps`) the grid over the grassed cells, each
         vertex sunk so that the grid lies under the ground the grass stands on."""
+        self.program = load_program(
+            self.ctx, "ground.glsl", ("LIGHT_MAPS",) if frame.light_maps else ()
+        )
+        if self.program not in self._plane:
+            self._plane[self.program] = self.ctx.vertex_array(
+                self.program, [(self.vbo, "2f", "in_corner")]
+            )
         frame.apply(self.program)
         light = frame.lighting
         p = self.program
@@ -197,12 +206,13 @@ class GroundRenderer:
         p["u_mesh"].value = 0.0
         # on uneven ground the plane sinks a little so the grid over the cells lies on top
         p["u_sink"].value = 0.02 if uneven else 0.0
-        self.vao.render(moderngl.TRIANGLE_STRIP)
+        self._plane[self.program].render(moderngl.TRIANGLE_STRIP)
         if uneven and maps is not None:
             self._draw_mesh(frame, maps)
         self.ctx.polygon_offset = (0.0, 0.0)
 
     def release(self) -> None:
         self._release_mesh()
-        self.vao.release()
+        for vao in self._plane.values():
+            vao.release()
         self.vbo.release()

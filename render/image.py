@@ -17,7 +17,7 @@ from core.terrain import Terrain
 from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
 from render.ground import grid_mesh
-from render.shaders import load_program, reads, wind_defines
+from render.shaders import load_program, reads
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 
@@ -159,7 +159,7 @@ class ImageRenderer:
     def prepare(self, frame: FrameUniforms) -> None:
         if self.textures is None:
             return
-        program = load_program(self.ctx, "image.glsl", wind_defines(frame.wind.enabled))
+        program = load_program(self.ctx, "image.glsl", frame.defines)
         if program is not self.program:
             self.program = program
             for batch in self.batches.values():

@@ -10,7 +10,7 @@ import numpy as np
 from core.camera import gl_bytes
 from core.lighting import Lighting
 from core.wind import NOISE_FEATURES, Wind
-from render.shaders import reads
+from render.shaders import reads, wind_defines
 
 DESIGN_UNIT = 7  # texture unit of the design-map stack (render/design_maps.py)
 # units of the height + density textures, one a density channel (DesignMapTextures.grounds)
@@ -39,6 +39,15 @@ class FrameUniforms:
     # a draft (render/frame.py preview): the light tables may still be of the patch before an
     # edit, rebuilt for the full frame that follows (render/facing.py)
     draft: bool = False
+    # whether the ambient or the diffuse light map has been painted (DesignMapTextures
+    # light_maps): programs read them only then
+    light_maps: bool = False
+
+    @property
+    def defines(self) -> tuple[str, ...]:
+        """The defines of the program variants this frame draws with: the wind's
+        (render/shaders.py wind_defines) and LIGHT_MAPS where the light maps are painted."""
+        return wind_defines(self.wind.enabled) + (("LIGHT_MAPS",) if self.light_maps else ())
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""

@@ -18,7 +18,7 @@ from core.occupancy import DensityOccupancy
 from core.terrain import Terrain
 from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
-from render.shaders import load_program, reads, wind_defines
+from render.shaders import load_program, reads
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import GROUND_UNIT, FrameUniforms
 
@@ -126,7 +126,7 @@ class VolumeRenderer(InstancedRenderer):
         floor = -1.0 if self.floor is None else self.floor * float(t.height)
         if not self.band[0] <= floor < min(self.band[1], float(t.height) + 1.0):
             floor = -1.0
-        defines = wind_defines(frame.wind.enabled) + (("FLOOR",) if floor >= 0.0 else ())
+        defines = frame.defines + (("FLOOR",) if floor >= 0.0 else ())
         self.use_program(load_program(self.ctx, "volume.glsl", defines))
         p = self.program
         frame.apply(p, self.technique_color)

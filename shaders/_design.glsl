@@ -6,8 +6,16 @@ vec2 design_uv(vec4 config, vec2 local) { return config.xy + local * config.zw; 
 uniform int u_density_channel;  // the grass type's channel of the density map (6.4.5)
 float design_density(vec2 uv) { return textureLod(u_design, vec3(uv, 0.0), 0.0)[u_density_channel]; }
 vec4 design_color(vec2 uv) { return textureLod(u_design, vec3(uv, 1.0), 0.0); }
+// The ambient and diffuse light maps, read only where one has been painted (the define
+// LIGHT_MAPS, render/uniforms.py FrameUniforms.defines): unpainted, every texel of both is 1,
+// and a CPU renderer would still pay for their fetches in every fragment and vertex.
+#if defined LIGHT_MAPS
 vec3 design_ambient(vec2 uv) { return textureLod(u_design, vec3(uv, 2.0), 0.0).rgb; }
 vec3 design_diffuse(vec2 uv) { return textureLod(u_design, vec3(uv, 3.0), 0.0).rgb; }
+#else
+vec3 design_ambient(vec2 uv) { return vec3(1.0); }
+vec3 design_diffuse(vec2 uv) { return vec3(1.0); }
+#endif
 // The colour map as a pixel's footprint on the ground sees it (uv's change across the pixel, dx
 // and dy; its mipmapped copy, render/design_maps.py): a far representation's fragment covers
 // many texels, and a marking a texel wide read at the base level broke into dots. Seen at a

@@ -99,6 +99,23 @@ def test_colour_map_with_full_alpha_colours_the_grass(headless, only):
 
 
 @pytest.mark.parametrize("only", REPRESENTATIONS)
+@pytest.mark.parametrize("layer", ["ambient", "diffuse"])
+def test_a_painted_light_map_darkens_the_grass_it_covers(headless, only, layer):
+    """Unpainted, the light maps are all ones and no program reads them (LIGHT_MAPS); the
+    first stroke makes every program read them from the next frame on."""
+    doc = document()
+    camera = doc.camera("top")
+    renderer = headless(doc, mode=only)
+    before, _ = renderer.render(camera, SIZE)
+    assert not renderer.pipeline.map_textures.light_maps
+    doc.maps.write(layer, 0, 0, np.full((64, 32, 3), 0.3))  # columns 0-31: the cells at x < 0
+    after, _ = renderer.render(camera, SIZE)
+    dark, lit = pixel(camera, (-2.0, 0.0, 0.0)), pixel(camera, (2.0, 0.0, 0.0))
+    assert window(after, dark).mean() < 0.9 * window(before, dark).mean()
+    assert abs(window(after, lit).mean() - window(before, lit).mean()) < 2.0
+
+
+@pytest.mark.parametrize("only", REPRESENTATIONS)
 def test_mirror_bits_change_the_pixels_but_not_the_statistics(headless, only):
     doc = document(mirror_seed=None)
     camera = doc.camera("default")

@@ -56,6 +56,15 @@ def test_every_shader_compiles_with_expected_inputs(ctx, name, wind):
     assert EXPECTED.get(name, set()) <= set(program)
 
 
+@pytest.mark.parametrize("name", ["geometry.glsl", "volume.glsl", "image.glsl", "ground.glsl"])
+def test_painted_light_maps_are_a_variant_of_their_own(ctx, name):
+    """Every program that lights grass or soil by the light maps compiles with LIGHT_MAPS and
+    is another program than the one for unpainted maps."""
+    lit = load_program(ctx, name, ("LIGHT_MAPS",))
+    assert "u_design" in set(lit)
+    assert lit is not load_program(ctx, name)
+
+
 def test_volume_pass_with_the_horizontal_slice_reads_it_and_one_without_does_not(ctx):
     floor = {"u_floor", "u_top_color", "u_top_data", "u_floor_shade", "u_band_column"}
     assert floor <= set(load_program(ctx, "volume.glsl", ("FLOOR",)))
