@@ -471,7 +471,7 @@ class FramePipeline:
             for (_, renderer, band), part in zip(volumes, row, strict=True):
                 if part.stop > part.start:
                     self._check_abort()
-                    renderer.set_instances(renderer.cells[part], renderer.plane_rows(part))
+                    renderer.set_instances(renderer.cells[part], renderer.carriers_of(part))
                     renderer.band = band
                     stats.t_v_ms += timed(lambda r=renderer: _passes(r, frame))
         self.overlay.draw(frame)

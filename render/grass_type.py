@@ -184,9 +184,11 @@ class GrassTypeRenderer:
                     order = np.argsort(-far, kind="stable")
                     instances, far = instances[order], far[order]
                 renderer.cells, renderer.distances = instances, far  # uploaded by distance band
-                renderer.planes = None
+                renderer.carrier_rows = None
                 if terrain is not None:
-                    renderer.planes = carriers(terrain, occupancy, self.density_channel, instances)
+                    renderer.carrier_rows = carriers(
+                        terrain, occupancy, self.density_channel, instances
+                    )
             elif representation == "image":
                 rects = None
                 if terrain is not None and occupancy is not None and instances.size:

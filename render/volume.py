@@ -71,7 +71,7 @@ class VolumeRenderer(InstancedRenderer):
     # per cell, the ground's slope and the lowest and highest ground over it (core/terrain.py
     # planes_of), and the rectangle where the grass grows in it (carriers): the cuboid's
     # bottom and top follow the slope, its walls that rectangle; None: level, whole cuboids
-    planes: np.ndarray | None = None
+    carrier_rows: np.ndarray | None = None
     # the second instance buffer: those planes and that rectangle (render/buffers.py)
     rows_layout = ("4f 4f/i", ("in_plane", "in_rect"))
 
@@ -98,9 +98,9 @@ class VolumeRenderer(InstancedRenderer):
         self._owned = owned
         self.slices = textures.slices if textures is not None else 0
 
-    def plane_rows(self, part: slice) -> np.ndarray | None:
-        """The planes of `cells[part]` (None with level cuboids)."""
-        return None if self.planes is None else self.planes[part]
+    def carriers_of(self, part: slice) -> np.ndarray | None:
+        """The carrier rows of `cells[part]` (None: level cuboids over whole cells)."""
+        return None if self.carrier_rows is None else self.carrier_rows[part]
 
     def default_rows(self, instances: np.ndarray) -> np.ndarray:
         """Level cuboids over each cell's height range and over the whole cell."""
