@@ -107,8 +107,13 @@ class LightMoments:
         )
 
     def lit(self, light_dir: np.ndarray, translucency: float) -> np.ndarray:
-        """The mean diffuse factor of each entry under this light (float64, its shape)."""
+        """The mean diffuse factor of each entry under this light (float64, its shape). The
+        product keeps the sums' precision: single precision for kept sums
+        (render/derived_cache.py), which differs from double by under 1e-6 on the tables and
+        spares a double copy of them."""
         light = np.asarray(light_dir, np.float64)
         a, b = 0.5 * (1.0 + translucency), 0.5 * (1.0 - translucency)
-        summed = a * (self.powers @ light_coefficients(light)) + b * (self.signed @ light)
+        kind = self.powers.dtype
+        summed = a * (self.powers @ light_coefficients(light).astype(kind)).astype(np.float64)
+        summed += b * (self.signed @ light.astype(kind))
         return np.where(self.total > 0.0, summed / np.maximum(self.total, 1e-12), 0.0)

@@ -94,6 +94,16 @@ def traverse(
 _NO_CELLS = np.zeros(1, np.uint8)
 
 
+def warm() -> None:
+    """Load the compiled walk (numba's on-disk cache) with a traversal of a 2 × 2 terrain: the
+    load is LLVM's work, mostly outside the interpreter's lock, so a thread that runs this while
+    a renderer is being set up spares its first frame that wait (render/frame.py)."""
+    terrain = Terrain(2, 2, mirror_seed=0)
+    occupancy = DensityOccupancy(2, 2, np.ones((2, 2, 1), np.float32))
+    frustum = Frustum.from_view((1.0, 1.0, -1.0), (1.0, 0.0, 1.0), 50.0, 1.0, 0.1, 10.0)
+    traverse(terrain, (1.0, 1.0, -1.0), LodConfig(), frustum, occupancy, 0)
+
+
 @numba.njit(cache=True)
 def _select(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull,
             cone, cell_min, cell_max, skip_bare, grows, bit, noise, mirrored):  # fmt: skip

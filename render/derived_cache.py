@@ -24,9 +24,11 @@ import contextlib
 import hashlib
 import os
 import re
+import threading
 import time
 import zipfile
 from collections.abc import Callable
+from concurrent.futures import Future, ThreadPoolExecutor
 from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, TypeVar
@@ -96,7 +98,9 @@ def _moments_arrays(prefix: str, m: LightMoments) -> dict[str, np.ndarray]:
 def _moments_of(f, prefix: str) -> LightMoments:
     from core.light_moments import LightMoments
 
-    powers, signed, total = (np.asarray(f[f"{prefix}{name}"], np.float64) for name in _FIELDS)
+    # kept in single precision as written: a double copy of the slope sums (2 × 7 MB a patch)
+    # cost a start's first frame 30 ms; LightMoments.lit works in either
+    powers, signed, total = (np.asarray(f[f"{prefix}{name}"], np.float32) for name in _FIELDS)
     shape = total.shape
     if powers.shape[:-1] != shape or signed.shape != (*shape, 3):
         raise ValueError("sums of mismatched shapes")
@@ -152,8 +156,41 @@ _KINDS: dict[str, tuple[Callable, Callable]] = {
 
 
 # -- reading, writing, claiming ----------------------------------------------------------------
+_ahead: dict[tuple[str, str], Future] = {}  # reads begun by read_ahead, by kind and key
+_ahead_lock = threading.Lock()
+_reader: ThreadPoolExecutor | None = None
+AHEAD = 8  # the most reads begun and not yet taken (the oldest are forgotten)
+
+
+def read_ahead(kind: str, key: str) -> None:
+    """Begin reading what is kept under `key` on a thread of its own, for the `load` that will
+    ask for it: a file read and its checks wait mostly outside the interpreter's lock, so they
+    go on while the caller sets up the rest (a renderer's conversion, its first frame)."""
+    global _reader
+    if path_for(kind, key) is None:
+        return
+    with _ahead_lock:
+        if (kind, key) in _ahead:
+            return
+        if _reader is None:
+            _reader = ThreadPoolExecutor(1, thread_name_prefix="sward-read-ahead")
+        _ahead[(kind, key)] = _reader.submit(_load, kind, key)
+        while len(_ahead) > AHEAD:
+            del _ahead[next(iter(_ahead))]
+
+
 def load(kind: str, key: str):
     """The sums kept under `key`, or None (none, or a file that is not whole or not sums)."""
+    with _ahead_lock:
+        ahead = _ahead.pop((kind, key), None)
+    if ahead is not None:
+        found = ahead.result()
+        if found is not None:
+            return found
+    return _load(kind, key)
+
+
+def _load(kind: str, key: str):
     path = path_for(kind, key)
     if path is None or not path.is_file():
         return None

@@ -7,6 +7,7 @@ as the wind bends the blades (core/facing.py bend_coefficients)."""
 from __future__ import annotations
 
 import hashlib
+import weakref
 from collections import OrderedDict
 from collections.abc import Callable
 
@@ -28,15 +29,33 @@ _kept: OrderedDict[str, SlopeMoments] = OrderedDict()
 _kept_facing: OrderedDict[str, LightMoments] = OrderedDict()
 
 
+_vertex_digests: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # patch -> its hash
+
+
 def _digest(patch: GrassPatch, canopy: Canopy | None) -> str:
-    """The content of a patch and canopy: sums kept by it stand in for no other."""
-    digest = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
+    """The content of a patch and canopy: sums kept by it stand in for no other. A patch's
+    vertices are hashed once (a frame asks for a patch's sums with and without its canopy)."""
+    vertices = _vertex_digests.get(patch)
+    if vertices is None:
+        vertices = hashlib.blake2b(patch.vertices.tobytes(), digest_size=16)
+        _vertex_digests[patch] = vertices
+    digest = vertices.copy()
     if canopy is not None:
         for sigma, colour in canopy.profiles:
             digest.update(np.ascontiguousarray(sigma).tobytes())
             digest.update(np.ascontiguousarray(colour).tobytes())
         digest.update(np.float64(canopy.height).tobytes())
     return digest.hexdigest()
+
+
+def read_ahead(patch: GrassPatch, canopy: Canopy) -> None:
+    """Begin reading the sums a grass type of this patch and canopy lights with, if kept
+    (render/derived_cache.py read_ahead): its slope sums and its facing sums with and without
+    the canopy."""
+    for kind, seen in (("slope", canopy), ("facing", None), ("facing", canopy)):
+        key = _digest(patch, seen)
+        if key not in (_kept if kind == "slope" else _kept_facing):
+            derived_cache.read_ahead(kind, key)
 
 
 def _keep(kept: OrderedDict, key: str, value) -> None:

@@ -9,12 +9,14 @@ timed as a whole.
 from __future__ import annotations
 
 import math
+import threading
 import time
 from collections.abc import Callable
 
 import moderngl
 import numpy as np
 
+from core import traversal
 from core.camera import Camera
 from core.design_maps import DesignMaps
 from core.draw_list import draw_list
@@ -36,7 +38,7 @@ from render.grass_type import GrassTypeRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
 from render.overlay import OverlayRenderer
-from render.present import PREVIEW_SCALE, Presenter, opaque_alpha, release_fbo
+from render.present import PREVIEW_SCALE, Presenter, release_fbo
 from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.tiling import TilingNoise
@@ -54,6 +56,8 @@ class FramePipeline:
     def __init__(self, ctx: moderngl.Context, samples: int = 4) -> None:
         self.ctx = ctx
         self.samples = max(0, min(samples, ctx.max_samples))
+        # the traversal's compiled walk loads beside the set-up, not in the first frame
+        threading.Thread(target=traversal.warm, name="sward-warm-walk").start()
         # one renderer set per grass type (thesis 6.4.5); the first is the patch being designed
         self.grass_types: list[GrassTypeRenderer] = [
             GrassTypeRenderer(ctx, 0)
@@ -260,7 +264,7 @@ class FramePipeline:
         if key not in self._targets:
             for old in [k for k in self._targets if k[:2] != size]:  # a resize drops old sizes
                 release_fbo(self._targets.pop(old))
-            color = self.ctx.renderbuffer(size, 4, samples=samples)
+            color = self.ctx.texture(size, 4, samples=samples)  # read by Presenter.resolve
             depth = self.ctx.depth_renderbuffer(size, samples=samples)
             self._targets[key] = self.ctx.framebuffer(color, depth)
         return self._targets[key]
@@ -319,9 +323,7 @@ class FramePipeline:
         if preview:
             self.present.scale_up(fbo, out, size)
         else:
-            ctx.viewport = (0, 0, w, h)
-            opaque_alpha(fbo)
-            ctx.copy_framebuffer(out, fbo)
+            self.present.resolve(fbo, out, self.samples)
         if measure:
             ctx.finish()
         end = time.perf_counter()

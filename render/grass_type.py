@@ -16,7 +16,7 @@ from core.params import SliceParams
 from core.patch import GrassPatch
 from core.terrain import Terrain
 from render.conversion import PatchConverter
-from render.facing import FacingTable, SlopeTable
+from render.facing import FacingTable, SlopeTable, read_ahead
 from render.geometry import GeometryRenderer
 from render.image import ImageRenderer
 from render.slices import SliceTextures
@@ -158,6 +158,9 @@ class GrassTypeRenderer:
             sliced = converter.convert(patch, n, (sp.width, sp.height), sp.top)
             textures = SliceTextures.upload(self.ctx, sliced)
             self.set_slice_textures(textures, patch, sp.replace(slices=n), sp.slices)
+            canopy = self._canopy()
+            if canopy is not None:  # the light sums its first frame asks for
+                read_ahead(patch, canopy)
 
     # -- drawing -----------------------------------------------------------------------------
     def upload(

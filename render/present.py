@@ -1,5 +1,6 @@
-"""Putting a frame into the caller's framebuffer: preview frames (half resolution, no MSAA)
-scaled up by one textured quad, and every pixel made opaque before a window composes it."""
+"""Putting a frame into the caller's framebuffer, every pixel opaque (shaders/present.glsl):
+preview frames (half resolution, no MSAA) scaled up by one textured quad, full frames' samples
+averaged."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ class Presenter:
     def __init__(self, ctx: moderngl.Context) -> None:
         self.ctx = ctx
         self._fbo: moderngl.Framebuffer | None = None  # one size kept
-        self._vao: moderngl.VertexArray | None = None
+        self._vaos: dict[moderngl.Program, moderngl.VertexArray] = {}  # per program variant
         self._vbo: moderngl.Buffer | None = None
 
     def target(self, size: tuple[int, int]) -> moderngl.Framebuffer:
@@ -30,38 +31,38 @@ class Presenter:
         return self._fbo
 
     def scale_up(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size) -> None:
-        if self._vao is None:
-            program = load_program(self.ctx, "present.glsl")
+        """The preview frame `fbo` over the whole of `out`, linearly filtered."""
+        self._draw(fbo, out, size, ())
+
+    def resolve(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, samples: int) -> None:
+        """Average the `samples` samples of each pixel of `fbo` (its colour a texture; 0: one
+        sample) into `out`, of the same size. One pass of our own rather than a blit: on
+        llvmpipe a process's first blit readied its resolve for 30 ms, this program's variant
+        for a few (kept in Mesa's shader cache)."""
+        self._draw(fbo, out, fbo.size, (f"RESOLVE {max(samples, 1)}",))
+
+    def _draw(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size, defines) -> None:
+        program = load_program(self.ctx, "present.glsl", defines)
+        if self._vbo is None:
             corners = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)
             self._vbo = self.ctx.buffer(corners.tobytes())
-            self._vao = self.ctx.vertex_array(program, [(self._vbo, "2f", "in_corner")])
+        if program not in self._vaos:
+            self._vaos[program] = self.ctx.vertex_array(program, [(self._vbo, "2f", "in_corner")])
             program["u_frame"].value = 0
         out.use()
         self.ctx.viewport = (0, 0, *size)
         self.ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
         fbo.color_attachments[0].use(0)
-        self._vao.render(moderngl.TRIANGLE_STRIP)
+        self._vaos[program].render(moderngl.TRIANGLE_STRIP)
         self.ctx.enable(moderngl.DEPTH_TEST)
 
     def release(self) -> None:
         if self._fbo is not None:
             release_fbo(self._fbo)
-        for obj in (self._vao, self._vbo):
+        for obj in (*self._vaos.values(), self._vbo):
             if obj is not None:
                 obj.release()
-
-
-def opaque_alpha(fbo: moderngl.Framebuffer) -> None:
-    """Set every pixel's alpha to 1. Alpha-to-coverage and the alpha test leave the fragment's
-    alpha in the image; a window compositor (Qt draws the viewport's framebuffer over the window)
-    would show the background through the grass."""
-    fbo.color_mask = (False, False, False, True)
-    fbo.depth_mask = False
-    fbo.use()
-    fbo.clear(0.0, 0.0, 0.0, 1.0)
-    fbo.color_mask = (True, True, True, True)
-    fbo.depth_mask = True
-    fbo.use()
+        self._vaos = {}
 
 
 def release_fbo(fbo: moderngl.Framebuffer) -> None:

@@ -1,6 +1,10 @@
 #version 330 core
-// Shows a frame drawn at a lower resolution (the viewport's preview while the camera or the
-// brush moves) over the whole target, linearly filtered.
+// Puts a frame over the whole target with every pixel opaque: a frame drawn at a lower
+// resolution (the viewport's preview while the camera or the brush moves) linearly filtered,
+// or, with RESOLVE n, a frame's n samples per pixel averaged (n = 1: a frame without them).
+// Alpha-to-coverage and the alpha test leave the fragments' alpha in the frame; a window
+// compositor (Qt draws the viewport's framebuffer over the window) would show the background
+// through the grass.
 
 #if defined VERTEX_SHADER
 
@@ -14,10 +18,27 @@ void main() {
 
 #elif defined FRAGMENT_SHADER
 
-uniform sampler2D u_frame;
-in vec2 v_uv;
 out vec4 f_color;
 
+#if defined RESOLVE
+#if RESOLVE > 1
+uniform sampler2DMS u_frame;
+#else
+uniform sampler2D u_frame;
+#endif
+
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    vec3 sum = vec3(0.0);
+    for (int s = 0; s < RESOLVE; ++s) sum += texelFetch(u_frame, texel, s).rgb;
+    f_color = vec4(sum / float(RESOLVE), 1.0);
+}
+
+#else
+uniform sampler2D u_frame;
+in vec2 v_uv;
+
 void main() { f_color = vec4(texture(u_frame, v_uv).rgb, 1.0); }
+#endif
 
 #endif

@@ -81,6 +81,41 @@ def test_a_later_run_reads_the_sums_an_earlier_one_built(cache, monkeypatch):
         facing.kept_facing_moments(patch, _canopy(0.5))
 
 
+def test_sums_read_ahead_are_those_a_frame_then_asks_for(cache, monkeypatch):
+    """A grass type begins reading its kept sums when its slices are made (facing.read_ahead);
+    the frame that asks for them takes what was read, the same as a read of its own."""
+    patch = generate_patch(PatchParams(blade_count=200, seed=3))
+    canopy = _canopy(0.4)
+    built = facing.kept_slope_moments(patch, canopy)
+    facing.kept_facing_moments(patch, None)
+    _forget(monkeypatch)
+    _no_builds(monkeypatch)
+    reads = []
+    real = derived_cache._load
+    monkeypatch.setattr(
+        derived_cache,
+        "_load",
+        lambda *a: (
+            reads.append((*a, threading.current_thread() is threading.main_thread())) or real(*a)
+        ),
+    )
+    facing.read_ahead(patch, canopy)
+    read = facing.kept_slope_moments(patch, canopy)
+    assert facing.kept_facing_moments(patch, None) is not None
+    # the facing sums seen through the canopy were never kept: built when asked for, not read
+    with pytest.raises(AssertionError, match="built again"):
+        facing.kept_facing_moments(patch, canopy)
+    # each found file was read once, on the reader's thread, ahead of the frame
+    for kind, seen in (("slope", canopy), ("facing", None)):
+        key = facing._digest(patch, seen)
+        assert [r for r in reads if r[:2] == (kind, key)] == [(kind, key, False)]
+    assert read is not None
+    sun = Lighting().sun_direction
+    np.testing.assert_allclose(
+        slope_ratios(read, sun, 0.3), slope_ratios(built, sun, 0.3), atol=1e-5
+    )
+
+
 def test_nothing_is_kept_with_the_cache_off(tmp_path, monkeypatch):
     monkeypatch.setenv(derived_cache.CACHE_ENV, "off")
     monkeypatch.delenv(derived_cache.SHARED_DIR_ENV, raising=False)
