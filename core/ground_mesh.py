@@ -4,6 +4,8 @@ levels of detail drawn chunk by chunk (render/ground.py)."""
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from core.heights import bilinear, bilinear_grid, block_extremes
@@ -58,7 +60,7 @@ def mesh_heights(heights: np.ndarray, quads: tuple[int, int], sink: np.ndarray) 
 
 def _mesh_at(mesh: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     """A mesh's vertex heights (rows along v) interpolated over its triangles (split as
-    render/ground.py grid_mesh splits them) at the vertices of a finer grid of `shape`."""
+    grid_mesh splits them) at the vertices of a finer grid of `shape`."""
     nv, nu = mesh.shape[0] - 1, mesh.shape[1] - 1
     x = np.arange(shape[1]) * nu / (shape[1] - 1)
     z = np.arange(shape[0]) * nv / (shape[0] - 1)
@@ -111,7 +113,7 @@ def quad_excess(heights: np.ndarray, quads: tuple[int, int], rows: tuple[int, in
     (nu, nv) grid quads rise at most over the bilinear surface of `heights` (rows along v, as
     GL_LINEAR samples it, in the float16 the textures hold), in height-map units, ≥ 0:
     (b1 − b0, nu) float32. Vertex (i, j) stands at (u, v) = (i / nu, j / nv); quad (a, b) is
-    split from (a + 1, b) to (a, b + 1), as render/ground.py's grid_mesh."""
+    split from (a + 1, b) to (a, b + 1), as grid_mesh."""
     nu, nv = quads
     b0, b1 = rows
     h = np.asarray(heights, np.float32).astype(np.float16).astype(np.float64)
@@ -205,3 +207,67 @@ def vertex_sink(excess: np.ndarray) -> np.ndarray:
             block = out[dj : dj + nv, di : di + nu]
             np.maximum(block, excess, out=block)
     return out
+
+
+def grid_mesh(nu: int, nv: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices (0 … 1)² and triangle indices of an nu × nv grid (nv = nu if not given), each
+    quad split from its (u + 1, v) corner to its (u, v + 1) corner (mesh_sink
+    assumes this split)."""
+    nv = nu if nv is None else nv
+    u, v = np.meshgrid(
+        np.linspace(0.0, 1.0, nu + 1, dtype=np.float32),
+        np.linspace(0.0, 1.0, nv + 1, dtype=np.float32),
+        indexing="xy",
+    )
+    verts = np.stack([u.ravel(), v.ravel()], axis=1)
+    i = np.arange(nv)[:, None] * (nu + 1) + np.arange(nu)[None, :]  # lower-left of each quad
+    quads = np.stack([i, i + 1, i + nu + 1, i + 1, i + nu + 2, i + nu + 1], axis=-1)
+    return verts, quads.astype(np.uint32).ravel()
+
+
+@lru_cache(maxsize=2 * GROUND_LEVELS)
+def chunked_mesh(nu: int, nv: int, chunks: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """grid_mesh(nu, nv) in chunks × chunks chunks (rows along v), each with vertices of its
+    own (llvmpipe shades every vertex between a draw's lowest and highest index) and one run
+    of the indices: its triangles, then its skirts, along each of its edges inside the grid a
+    strip down from the edge to a copy of its vertices that the shader lowers (in_drop 1; 0 on
+    the grid's outer border, where a skirt's end would show below the terrain's edge).
+    Vertices (u, v, drop); indices; each chunk's (first index, count), (chunks, chunks, 2).
+    Kept for the levels asked for last (the arrays are shared: not to be written)."""
+    cu, cv = nu // chunks, nv // chunks
+    # a chunk's own grid of (cu + 1) × (cv + 1) vertices, and its quads' corners in it
+    ii, jj = np.meshgrid(np.arange(cu + 1), np.arange(cv + 1), indexing="xy")
+    q = (np.arange(cv)[:, None] * (cu + 1) + np.arange(cu)[None, :]).ravel()
+    quads = np.stack([q, q + 1, q + cu + 1, q + 1, q + cu + 2, q + cu + 1], -1).ravel()
+    below = (cu + 1) * (cv + 1)  # a vertex's lowered copy
+    edges = {  # the chunk's vertices along each of its edges, in order
+        "low_v": np.arange(cu + 1),
+        "high_v": cv * (cu + 1) + np.arange(cu + 1),
+        "low_u": np.arange(cv + 1) * (cu + 1),
+        "high_u": np.arange(cv + 1) * (cu + 1) + cu,
+    }
+    verts, runs, ranges = [], [], np.zeros((chunks, chunks, 2), np.int64)
+    first = base = 0
+    for b in range(chunks):
+        for a in range(chunks):
+            u = ((a * cu + ii) / nu).ravel().astype(np.float32)
+            v = ((b * cv + jj) / nv).ravel().astype(np.float32)
+            top = np.stack([u, v, np.zeros_like(u)], axis=1)
+            # a skirt ends on the terrain's outer border (seen from outside, it hung below it)
+            inside = (u > 0.0) & (u < 1.0) & (v > 0.0) & (v < 1.0)
+            verts += [top, top + np.c_[np.zeros((u.size, 2), np.float32), inside]]
+            inner = {"low_v": b > 0, "high_v": b < chunks - 1, "low_u": a > 0,
+                     "high_u": a < chunks - 1}  # fmt: skip
+            tris = [quads]
+            for name, line in edges.items():
+                if inner[name]:
+                    p0, p1 = line[:-1], line[1:]
+                    tris.append(
+                        np.stack([p0, p1, p1 + below, p0, p1 + below, p0 + below], -1).ravel()
+                    )
+            run = (np.concatenate(tris) + base).astype(np.uint32)
+            ranges[b, a] = (first, run.size)
+            first += run.size
+            base += 2 * below
+            runs.append(run)
+    return np.concatenate(verts), np.concatenate(runs), ranges

@@ -162,19 +162,28 @@ _reader: ThreadPoolExecutor | None = None
 AHEAD = 8  # the most reads begun and not yet taken (the oldest are forgotten)
 
 
-def read_ahead(kind: str, key: str) -> None:
-    """Begin reading what is kept under `key` on a thread of its own, for the `load` that will
-    ask for it: a file read and its checks wait mostly outside the interpreter's lock, so they
-    go on while the caller sets up the rest (a renderer's conversion, its first frame)."""
+def beside(work: Callable[..., T], *args) -> Future[T]:
+    """Run `work(*args)` on the one thread that reads ahead: what a first frame will need and
+    can be made without GL (files read, numpy arrays), while the caller sets up the rest. Its
+    waits (file reads, numpy's loops) are mostly outside the interpreter's lock."""
     global _reader
+    with _ahead_lock:
+        if _reader is None:
+            _reader = ThreadPoolExecutor(1, thread_name_prefix="sward-ahead")
+        return _reader.submit(work, *args)
+
+
+def read_ahead(kind: str, key: str) -> None:
+    """Begin reading what is kept under `key` beside the caller, for the `load` that will ask
+    for it (a renderer's first frame, after its conversion)."""
     if path_for(kind, key) is None:
         return
     with _ahead_lock:
         if (kind, key) in _ahead:
             return
-        if _reader is None:
-            _reader = ThreadPoolExecutor(1, thread_name_prefix="sward-read-ahead")
-        _ahead[(kind, key)] = _reader.submit(_load, kind, key)
+    future = beside(_load, kind, key)
+    with _ahead_lock:
+        _ahead[(kind, key)] = future
         while len(_ahead) > AHEAD:
             del _ahead[next(iter(_ahead))]
 

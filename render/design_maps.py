@@ -16,6 +16,7 @@ llvmpipe a mipmapped sampler cost the ground pass several times over even at lev
 from __future__ import annotations
 
 import hashlib
+from concurrent.futures import Future
 from dataclasses import dataclass
 
 import moderngl
@@ -23,7 +24,9 @@ import numpy as np
 
 from core.design_maps import LAYER_INDEX, DesignMaps, Rect, union
 from core.ground_mesh import (
+    GROUND_CHUNKS,
     chunk_deviation,
+    chunked_mesh,
     mesh_heights,
     mesh_levels,
     mesh_sink,
@@ -66,6 +69,29 @@ class GroundChunks:
         )
 
 
+def _ground_arrays(
+    heights: np.ndarray, levels: list[tuple[int, int]]
+) -> tuple[list[tuple[np.ndarray, np.ndarray]], GroundChunks]:
+    """Per level of the ground mesh its sink and per-quad excess (kept by the heights they are
+    of), and its chunks; each level's chunked mesh made ready (render/ground.py draws them)."""
+    sinks = []
+    of_heights = hashlib.blake2b(np.ascontiguousarray(heights).tobytes(), digest_size=16)
+    for quads in levels:
+        digest = of_heights.copy()
+        digest.update(np.asarray(quads, np.int64).tobytes())
+        made = derived_cache.fetch(
+            "sink", digest.hexdigest(), lambda q=quads: mesh_sink(heights, q)
+        )
+        assert made is not None
+        if made[1].shape != (quads[1], quads[0]):  # not this mesh's: made again
+            made = mesh_sink(heights, quads)
+        sinks.append(made)
+    chunks = GroundChunks.of(heights, levels, [vertex_sink(e) for _, e in sinks])
+    for quads in levels:
+        chunked_mesh(*quads, GROUND_CHUNKS)
+    return sinks, chunks
+
+
 class DesignMapTextures:
     def __init__(self, ctx: moderngl.Context, maps: DesignMaps) -> None:
         self.ctx = ctx
@@ -90,6 +116,7 @@ class DesignMapTextures:
         self._sinks: list[moderngl.Texture] = []
         self._excess: list[np.ndarray] = []
         self._chunks: GroundChunks | None = None
+        self._ahead: Future | None = None  # ground_ahead's sinks and chunks
         # whether a light map holds anything but ones (FrameUniforms.light_maps): checked once,
         # and from the first edit of either on, painted (an undo back to ones keeps it so)
         self.light_maps = any(bool(np.any(maps.stack[i][..., :3] != 1.0)) for i in LIGHT_LAYERS)
@@ -131,32 +158,33 @@ class DesignMapTextures:
         textures, levels = self.ground_levels()[:2]
         return textures[0], levels[0]
 
+    def ground_ahead(self) -> None:
+        """Begin making the ground mesh's sinks and chunks (ground_levels) beside the set-up
+        (derived_cache.beside): a renderer of uneven ground draws it in its first frame."""
+        if not self._sinks and self._ahead is None:
+            heights = self.maps.stack[HEIGHT, ..., 0].copy()  # edits may follow on this thread
+            self._ahead = derived_cache.beside(_ground_arrays, heights, mesh_levels(self.maps.size))
+
     def ground_levels(self) -> tuple[list[moderngl.Texture], list[tuple[int, int]], GroundChunks]:
         """Per level of the ground mesh (core/ground_mesh.py mesh_levels), how far each vertex
         sinks to lie under the grass's ground (core/ground_mesh.py mesh_sink), and its quads per
-        side; and its chunks' extents. Made at first use, the rows an edit reaches redone when
-        heights change; kept between runs by the heights they are of (render/
-        derived_cache.py)."""
+        side; and its chunks' extents. Made at first use (or begun ahead), the rows an edit
+        reaches redone when heights change; kept between runs by the heights they are of
+        (render/derived_cache.py)."""
         levels = mesh_levels(self.maps.size)
         if not self._sinks:
-            heights = self.maps.stack[HEIGHT, ..., 0]
-            for quads in levels:
-                digest = hashlib.blake2b(np.ascontiguousarray(heights).tobytes(), digest_size=16)
-                digest.update(np.asarray(quads, np.int64).tobytes())
-                made = derived_cache.fetch(
-                    "sink", digest.hexdigest(), lambda q=quads: mesh_sink(heights, q)
-                )
-                assert made is not None
-                sink, excess = made
-                if excess.shape != (quads[1], quads[0]):  # not this mesh's: made again
-                    sink, excess = mesh_sink(heights, quads)
+            ahead, self._ahead = self._ahead, None
+            made = ahead.result() if ahead is not None else None
+            if made is None:
+                made = _ground_arrays(self.maps.stack[HEIGHT, ..., 0], levels)
+            sinks, self._chunks = made
+            for quads, (sink, excess) in zip(levels, sinks, strict=True):
                 self._excess.append(excess.copy())  # its rows are redone in place after an edit
                 texture = self.ctx.texture(
                     (quads[0] + 1, quads[1] + 1), 1, sink.tobytes(), dtype="f4"
                 )
                 texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
                 self._sinks.append(texture)
-            self._chunks = None
         if self._chunks is None:
             heights = self.maps.stack[HEIGHT, ..., 0]
             sinks = [vertex_sink(e) for e in self._excess]
@@ -184,6 +212,8 @@ class DesignMapTextures:
         """Note a changed rectangle of one map; the next `flush` uploads it."""
         if rect[2] > 0 and rect[3] > 0:
             i = LAYER_INDEX[name]
+            if i == HEIGHT:
+                self._ahead = None  # of the heights before
             self.pending[i] = union(self.pending.get(i), rect)
             if i in LIGHT_LAYERS:
                 self.light_maps = True

@@ -16,7 +16,7 @@ import numpy as np
 
 from core.canopy import Canopy
 from core.facing import AZIMUTHS, ELEVATIONS, bend_coefficients, bend_moments, facing_moments
-from core.light_moments import LightMoments
+from core.light_moments import LightMoments, light_coefficients
 from core.lighting import Lighting
 from core.patch import GrassPatch
 from core.slopes import ACROSS, SLOPES, SlopeMoments, slope_moments_table, slope_ratios
@@ -56,6 +56,7 @@ def read_ahead(patch: GrassPatch, canopy: Canopy) -> None:
         key = _digest(patch, seen)
         if key not in (_kept if kind == "slope" else _kept_facing):
             derived_cache.read_ahead(kind, key)
+    derived_cache.beside(light_coefficients, (0.0, 1.0, 0.0))  # its fit, made once a process
 
 
 def _keep(kept: OrderedDict, key: str, value) -> None:

@@ -197,6 +197,8 @@ class FramePipeline:
         self.map_textures.maps.changed.disconnect(self._on_map_changed)
         self.map_textures.release()
         self.map_textures = DesignMapTextures(self.ctx, maps)
+        if self.terrain is not None and self.terrain.height_scale > 0:  # the ground mesh's
+            self.map_textures.ground_ahead()
         maps.changed.connect(self._on_map_changed)
         self._occupancy = None
 

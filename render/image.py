@@ -11,12 +11,12 @@ import moderngl
 import numpy as np
 
 from core.canopy import Canopy
+from core.ground_mesh import grid_mesh
 from core.heights import SLICE_GRIDS, slice_grids
 from core.lod import NO_FADE
 from core.terrain import Terrain
 from render.buffers import InstancedRenderer
 from render.facing import FACING_UNIT, FacingTable, SlopeTable, bind_slopes
-from render.ground import grid_mesh
 from render.shaders import load_program, reads
 from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms

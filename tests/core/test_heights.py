@@ -112,7 +112,7 @@ def test_an_edit_redoes_only_the_rows_it_reaches_with_the_same_result():
 
 def _chord_error(heights, scale, terrain, instance, n, samples=36):
     """The most the n × n grid of chords over an instance's cell strays from its ground, from
-    samples (triangles split as render/ground.py grid_mesh splits them)."""
+    samples (triangles split as core/ground_mesh.py grid_mesh splits them)."""
     ox, oz = instance["origin"] - np.asarray(terrain.origin, np.float32)
     sx, sz = instance["size"]
 

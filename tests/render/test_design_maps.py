@@ -150,3 +150,37 @@ def test_the_far_copy_follows_colour_edits_weighted_and_mipmapped(ctx):
     np.testing.assert_allclose(base[:, :32], np.tile((0.5, 0.25, 0.0, 0.5), (64, 32, 1)))
     assert np.all(base[:, 32:] == 0.0)  # white of weight 0 mixes in nothing
     mirror.release()
+
+
+def _ground(mirror: DesignMapTextures) -> list[np.ndarray]:
+    sinks, _levels, chunks = mirror.ground_levels()
+    read = [np.frombuffer(t.read(), np.float32) for t in sinks]
+    return [*read, chunks.deviation, chunks.low, chunks.high]
+
+
+def test_the_ground_begun_ahead_is_that_of_the_heights_it_is_drawn_with(ctx):
+    """A renderer of uneven ground begins its mesh's sinks and chunks beside the set-up
+    (DesignMapTextures.ground_ahead); its first frame draws those of the heights as they are
+    then, also after an edit in between."""
+    maps = DesignMaps(64)
+    ramp = np.linspace(0.0, 1.0, 64, dtype=np.float32)
+    maps.write("height", 0, 0, np.sin(6.0 * ramp)[None, :] * np.cos(5.0 * ramp)[:, None])
+    mirrors = [DesignMapTextures(ctx, maps) for _ in range(3)]
+    try:
+        plain, ahead, edited = mirrors
+        ahead.ground_ahead()
+        edited.ground_ahead()
+        for a, b in zip(_ground(ahead), _ground(plain), strict=True):
+            np.testing.assert_array_equal(a, b)
+        before = _ground(plain)
+        maps.write("height", 20, 20, np.full((12, 12), 1.5, np.float32))
+        edited.flush()
+        after = _ground(edited)
+        fresh = DesignMapTextures(ctx, maps)
+        mirrors.append(fresh)
+        for a, b in zip(after, _ground(fresh), strict=True):
+            np.testing.assert_array_equal(a, b)
+        assert not np.array_equal(after[-1], before[-1])  # the edit raised the chunks' highest
+    finally:
+        for mirror in mirrors:
+            mirror.release()

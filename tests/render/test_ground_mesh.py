@@ -72,7 +72,7 @@ def test_a_height_stroke_redoes_the_sink_of_the_rows_it_reaches(ctx):
 
 
 def test_chunked_mesh_is_the_grid_with_skirts_along_inner_chunk_edges():
-    from render.ground import chunked_mesh, grid_mesh
+    from core.ground_mesh import chunked_mesh, grid_mesh
 
     verts, indices, ranges = chunked_mesh(12, 8, 4)
     grid_verts, grid_indices = grid_mesh(12, 8)
