@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.canopy import Canopy
-from core.light_moments import LightMoments
+from core.light_moments import LightMoments, powers
 
 AZIMUTHS = 32  # table columns: azimuth of e, 0 = +z turning towards +x (as the sun's)
 ELEVATIONS = 8  # table rows: elevation of e, 0 … 90 degrees, texel centres
@@ -100,8 +100,31 @@ def facing_moments(
 ) -> LightMoments:
     """facing_lambert's table for any light: LightMoments of shape (elevations, azimuths)
     (core/light_moments.py), `.lit(light, translucency)` the table."""
-    n, w, facing = _facing_weights(normals, azimuths, elevations, seen)
-    return LightMoments.of(n, w, facing).reshaped((elevations, azimuths))
+    n = np.asarray(normals, np.float64).reshape(-1, 3)
+    length = np.linalg.norm(n, axis=1)
+    keep = length > 1e-6
+    pick = np.linspace(0, keep.sum() - 1, min(int(keep.sum()), SAMPLE)).astype(np.int64)
+    n = (n[keep] / length[keep, None])[pick]
+    e = directions(azimuths, elevations).reshape(-1, 3)
+    # the (k, m) weights and their products in single precision (the sums' tables agree with
+    # double precision's to under 1e-6: tests/core/test_facing_light.py); the light's side is
+    # a product with these sums (core/light_moments.py)
+    w = np.abs(n.astype(np.float32) @ e.T.astype(np.float32))  # |n · e|
+    through = np.ones((len(n), 1))  # what reaches each vertex, by table row
+    if seen is not None and len(n):
+        heights, canopy = seen
+        y = np.asarray(heights, np.float64).reshape(-1)[keep][pick]
+        theta = np.arcsin(directions(1, elevations)[:, 0, 1])  # the rows' elevations
+        through = canopy.transmittance(y, theta)
+        w *= np.repeat(through.astype(np.float32), azimuths, axis=1)
+    basis = np.hstack([powers(n, np.float32), np.ones((len(n), 1), np.float32)])
+    sums = (w.T @ basis).astype(np.float64)
+    # Σ w s n, s = sign(n · e): w s = (n · e) times what reaches the vertex, which depends on
+    # the row alone, so the sum is (Σ through n nᵀ) e per row, with no second (k, m) product
+    second = (through.T @ (n[:, :, None] * n[:, None, :]).reshape(-1, 9)).reshape(-1, 3, 3)
+    row = np.arange(len(e)) // azimuths if through.shape[1] > 1 else np.zeros(len(e), np.int64)
+    signed = np.einsum("mij,mj->mi", second[row], e)
+    return LightMoments(sums[:, :-1], signed, sums[:, -1]).reshaped((elevations, azimuths))
 
 
 # -- the wind's bend ---------------------------------------------------------------------------

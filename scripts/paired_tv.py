@@ -1,7 +1,8 @@
 """The meadow's default frame (950 × 720) for an earlier commit and for the working tree: the
-whole frame (t_a), its volume pass (t_v) and its image-based pass (t_i), measured alternately
-in one run: this machine's timings drift by ±30 % between runs, so a speed-up is only honest
-as a ratio of times taken side by side.
+whole frame (t_a), its volume pass (t_v) and its image-based pass (t_i), and a one-shot
+`sward render`'s frame over the steady one (`one_shot`: its t_a over the profile's median),
+measured alternately in one run: this machine's timings drift by ±30 % between runs, so a
+speed-up is only honest as a ratio of times taken side by side.
 
     .venv/bin/python scripts/paired_tv.py REV [--rounds 3] [--frames 5]
 
@@ -45,10 +46,13 @@ def _sward(tree: Path, *args: str) -> None:
 
 
 def _times(tree: Path, frames: int, out: Path) -> dict[str, float]:
-    """Medians of the default camera's frames (`sward profile`, its first viewpoint)."""
+    """Medians of the default camera's frames (`sward profile`, its first viewpoint), and a
+    one-shot `sward render`'s frame over their t_a."""
     _sward(tree, "profile", *SCENE, "--frames", str(frames), "--out", str(out))
     default = json.loads(out.read_text())["viewpoints"][0]["frames"]
-    return {k: statistics.median(f[k] for f in default) for k in KEYS}
+    times = {k: statistics.median(f[k] for f in default) for k in KEYS}
+    _sward(tree, "render", *SCENE, "--stats", str(out))
+    return {**times, "one_shot": json.loads(out.read_text())["t_a_ms"] / times["t_a_ms"]}
 
 
 def main() -> None:
@@ -84,6 +88,8 @@ def main() -> None:
         f"median_ratio_{k[:-3]}": statistics.median(r[f"ratio_{k[:-3]}"] for r in rounds)
         for k in KEYS
     }
+    for side in ("before", "now"):
+        medians[f"median_one_shot_{side}"] = statistics.median(r[side]["one_shot"] for r in rounds)
     result = {"rev": args.rev, "rounds": rounds, **medians}
     print(json.dumps({**result, "flip_quarter": flip}))
 

@@ -85,3 +85,23 @@ def test_sums_kept_in_single_precision_light_as_the_double_ones(name):
             a = single.lit(light.sun_direction, translucency)
             b = double.lit(light.sun_direction, translucency)
             assert np.abs(a - b).max() < 1e-6, (elevation, translucency)
+
+
+@pytest.mark.parametrize("name", sorted(PATCHES))
+def test_sums_seen_through_the_canopy_light_as_the_blades_do(name):
+    """facing_moments with `seen` (the image-based grass's table: each vertex as far as a view
+    reaches it through the blades above) against facing_lambert's sum over the same normals."""
+    from core.canopy import Canopy
+
+    patch = generate_patch(PATCHES[name])
+    v = patch.vertices
+    stack = np.zeros((2, 8, 4, 4), np.float32)
+    stack[..., 3] = 0.35
+    seen = (v["position"][:, 1], Canopy.of([stack], patch.height))
+    sums = facing_moments(v["normal"], seen=seen)
+    for elevation in (-5.0, 20.0, 60.0):
+        for translucency in (0.0, 0.7):
+            light = Lighting(sun_elevation=elevation, sun_azimuth=200.0)
+            exact = facing_lambert(v["normal"], light.sun_direction, translucency, seen=seen)
+            kept = sums.lit(light.sun_direction, translucency)
+            assert np.abs(kept - exact).max() < 2e-3, (elevation, translucency)
