@@ -38,11 +38,11 @@ def _exponents() -> np.ndarray:
 
 def powers(normals: np.ndarray, dtype: type = np.float64) -> np.ndarray:
     """(k, P) the monomials of degree LIGHT_DEGREE of unit normals (k, 3), in `dtype`."""
-    n = np.asarray(normals, dtype)
+    n: np.ndarray = np.asarray(normals, dtype)
     e = _exponents()
     # n^0 … n^d per component by repeated products (a float power per entry cost 2 ms a
     # thousand normals, the products a tenth of that)
-    table = np.empty((len(n), LIGHT_DEGREE + 1, 3), dtype)  # (k, d + 1, 3)
+    table: np.ndarray = np.empty((len(n), LIGHT_DEGREE + 1, 3), dtype)  # (k, d + 1, 3)
     table[:, 0] = 1.0
     for j in range(1, LIGHT_DEGREE + 1):
         np.multiply(table[:, j - 1], n, out=table[:, j])

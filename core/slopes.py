@@ -107,30 +107,53 @@ def slope_moments(
     seen = np.empty(face.shape, np.float32)
     weights = np.empty(face.shape, np.float32)
 
-    def moments(t: np.ndarray, g: np.ndarray, c: np.ndarray, upright: bool) -> LightMoments:
-        """The sums over the vertices seen at elevations t, the ground rising g along the view
-        and c across it: weights w (Canopy.transmittance at the vertex's height over the
-        ground, none below it when upright), times |n · e|."""
+    def moments(t: np.ndarray, g: np.ndarray, c: np.ndarray) -> LightMoments:
+        """The sums over the upright vertices seen at elevations t, the ground rising g along
+        the view and c across it: weights w (Canopy.transmittance at the vertex's height over
+        the ground, none below it), times |n · e|."""
         through = np.exp(-canopy.cumulative(t)).astype(np.float32)  # once per depth, direction
         through[through < 1e-30] = 0.0  # no subnormals into the products below
-        _seen(height, along, sideways, face, g, c, through, canopy.dy, canopy.height, upright,
-              seen, weights)  # fmt: skip
+        _seen(height, along, sideways, face, g, c, through, canopy.dy, canopy.height, seen,
+              weights)  # fmt: skip
         sums = (seen.T @ basis).astype(np.float64)
         second = (weights.T @ outer).astype(np.float64).reshape(-1, 3, 3)  # Σ w n nᵀ
         return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, e), sums[:, -1])
 
+    # The sheared blades stand at their own heights y, so each vertex keeps one canopy row in
+    # every view (_seen's row of y): their sums are, per row, the sums over its vertices
+    # (once) weighted by what reaches that row from each view, not a pass over the vertices a
+    # view. So are the upright blades' on flat ground (no rise along or across: y again),
+    # which leave out what lies below the ground (the last bin) and equal the sheared exactly.
+    rows = canopy.rows
+    per_row = np.float32(1.0 / canopy.dy)
+    row_of = np.minimum((height * per_row).astype(np.int64), rows - 1)  # int() truncates
+    row_of[height >= np.float32(canopy.height)] = rows  # above the grass: the last row
+    row_of[height < 0.0] = rows + 1
+    by_row = [np.flatnonzero(row_of == r) for r in range(rows + 2)]
+    row_sums = np.stack([(face[i].T @ basis[i]).astype(np.float64) for i in by_row])
+    row_outer = np.stack([outer[i].astype(np.float64).sum(axis=0) for i in by_row])
+
+    def by_rows(t: np.ndarray, below: bool) -> LightMoments:
+        """The sums at elevations t with each vertex at its own height (`below`: those under
+        the ground count in the first row, as the sheared blades do)."""
+        through = np.exp(-canopy.cumulative(t)).astype(np.float32).astype(np.float64)
+        through[through < 1e-30] = 0.0
+        through = np.concatenate([through, through[:1] if below else 0.0 * through[:1]])
+        sums = np.einsum("rm,rmp->mp", through, row_sums)
+        second = np.einsum("rm,rj->mj", through, row_outer).reshape(-1, 3, 3)
+        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, e), sums[:, -1])
+
     thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
     rises = np.zeros(thetas.shape) if across is None else np.broadcast_to(across, thetas.shape)
-    level = np.zeros(len(e), np.float32)
     upright, sheared_parts = [], []
     for index in np.ndindex(thetas.shape[:-1]):  # a θ for each direction per pass
         t = thetas[index]
         g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE).astype(np.float32)
         g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
         c = np.clip(rises[index], -MAX_RISE, MAX_RISE).astype(np.float32)
-        upright.append(moments(t, g, c, True))
+        upright.append(by_rows(t, False) if not (g.any() or c.any()) else moments(t, g, c))
         if sheared:
-            sheared_parts.append(moments(t, level, level, False))
+            sheared_parts.append(by_rows(t, True))
 
     return (
         LightMoments.stack(upright).reshaped(shape),
@@ -139,24 +162,23 @@ def slope_moments(
 
 
 @numba.njit(cache=True)
-def _seen(height, along, sideways, face, g, c, through, dy, top, upright, seen, weights):
-    """Per vertex k and direction m: its height over the ground, y − g_m along − c_m sideways
-    upright (sheared: y), the share of the view that reaches it (`through`: exp(−cumulative)
-    by row, Canopy.row_index's rows, the last above the grass), and that times |n · e|."""
+def _seen(height, along, sideways, face, g, c, through, dy, top, seen, weights):
+    """Per vertex k and direction m: its height over the ground upright, y − g_m along −
+    c_m sideways, the share of the view that reaches it (`through`: exp(−cumulative) by row,
+    Canopy.row_index's rows, the last above the grass; none below the ground), and that times
+    |n · e|."""
     rows = through.shape[0] - 1
     per_row = np.float32(1.0 / dy)
     top = np.float32(top)
     for k in range(height.shape[0]):
         for m in range(g.shape[0]):
-            h = height[k]
-            if upright:
-                h = h - g[m] * along[k, m] - c[m] * sideways[k, m]
-            if upright and h < 0.0:
+            h = height[k] - g[m] * along[k, m] - c[m] * sideways[k, m]
+            if h < 0.0:
                 w = np.float32(0.0)
             elif h >= top:
                 w = through[rows, m]
-            else:  # int() truncates: a height just under the ground (sheared) takes row 0
-                w = through[min(max(int(h * per_row), 0), rows - 1), m]
+            else:
+                w = through[min(int(h * per_row), rows - 1), m]
             weights[k, m] = w
             seen[k, m] = w * face[k, m]
 
