@@ -14,7 +14,8 @@ Reports:
   moment the window's thread handles it (p50 / p95 / max), and the lateness of a 10 ms timer
   on the window's thread.
 
-Run: `sward bench --suite latency --out results.json` (with SWARD_LATENCY_VIEW_HEIGHT=PIXELS the
+Run: `sward bench --suite latency --out results.json` (SWARD_LATENCY_ONLY="blade count typed,wind"
+sends only the inputs named; with SWARD_LATENCY_VIEW_HEIGHT=PIXELS the
 meadow's LOD distances hold for a view that tall: core/lod.py). Without a display it starts
 Xvfb; the window runs in a process of its own, apart from the EGL contexts of other suites. The
 JSON holds each input's figures beside the summaries.

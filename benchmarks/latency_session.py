@@ -94,7 +94,7 @@ class Probe(QObject):
                 "shown_ms": now_ms(),
                 "state_ms": stats.state_time * 1000.0,
                 "preview": bool(stats.preview),
-                "t_a_ms": stats.t_a_ms,
+                **{f"t_{part}_ms": getattr(stats, f"t_{part}_ms") for part in "aqugvimo"},
             }
         )
 
@@ -152,6 +152,13 @@ class Driver(threading.Thread):
         self.done = True
 
     # -- primitives --------------------------------------------------------------------------
+    @staticmethod
+    def reps(name: str) -> int:
+        """How many times to send an input: REPS, or none when SWARD_LATENCY_ONLY names others
+        (comma-separated input names, "wind" for the frames under the wind)."""
+        only = os.environ.get("SWARD_LATENCY_ONLY")
+        return REPS if not only or name in {n.strip() for n in only.split(",")} else 0
+
     def send(self, name: str, effect: str, *keys: str) -> None:
         """The decisive input: keys (xdotool key names), its time recorded just before; then
         wait for its full frame."""
@@ -198,12 +205,12 @@ class Driver(threading.Thread):
         self.away()
         xdo("mousemove", cx, cy)
         time.sleep(1.0)
-        for _rep in range(REPS):
+        for _rep in range(self.reps("technique colours")):
             self.send("technique colours", "key", "t")
-        if REPS % 2:
+        if self.reps("technique colours") % 2:
             xdo("key", "t")  # back to the shaded view
             time.sleep(2.0)
-        for rep in range(REPS):
+        for rep in range(self.reps("camera drag")):
             xdo("mousemove", cx, cy)
             entry = {"name": "camera drag", "effect": "move", "sent_ms": now_ms()}
             self.inputs.append(entry)
@@ -214,18 +221,18 @@ class Driver(threading.Thread):
                 time.sleep(0.03)
             xdo("mouseup", "1")
             self.wait(entry)
-        for rep in range(REPS):
+        for rep in range(self.reps("blade count typed")):
             self.click("patch_tab")
             self.click("blade_count")
             xdo("key", "ctrl+a")
             xdo("type", str(1500 - 100 * rep))  # a new patch each time
             self.send("blade count typed", "edit", "Return")
             self.undo_redo("blade count typed")
-        for rep in range(REPS):
+        for rep in range(self.reps("preset change")):
             self.click("patch_tab")
             self.pick("preset", "preset change", ("s", "u"), rep)
             self.undo_redo("preset change")
-        for rep in range(REPS):
+        for rep in range(self.reps("slice count")):
             self.click("patch_tab")
             xdo("mousemove", *self.places["patch_tree"])
             xdo("click", "--repeat", "30", "5")  # the wheel, down to the slice count
@@ -234,17 +241,17 @@ class Driver(threading.Thread):
         self.click("patch_tab")
         xdo("mousemove", *self.places["patch_tree"])
         xdo("click", "--repeat", "30", "4")  # back up
-        for rep in range(REPS):
+        for rep in range(self.reps("sun elevation")):
             self.click("light_tab")
             self.click("sun_elevation")
             self.send("sun elevation", "edit", "Prior" if rep % 2 == 0 else "Next")
             self.undo_redo("sun elevation")
-        for rep in range(REPS):
+        for rep in range(self.reps("LOD zone distance")):
             self.click("lod_tab")
             self.click("lod_end")
             self.send("LOD zone distance", "edit", "Up" if rep % 2 == 0 else "Down")
             self.undo_redo("LOD zone distance")
-        for rep in range(REPS):
+        for rep in range(self.reps("wind preset")):
             self.click("wind_tab")
             self.pick("wind_preset", "wind preset", ("l", "s"), rep)
             self.undo_redo("wind preset")
@@ -252,7 +259,7 @@ class Driver(threading.Thread):
         xdo("mousemove", cx, cy + 120)
         xdo("key", "b")  # paint in the viewport
         time.sleep(1.0)
-        for rep in range(REPS):
+        for rep in range(self.reps("paint stroke")):
             entry = {"name": "paint stroke", "effect": "press", "sent_ms": now_ms()}
             self.inputs.append(entry)
             xdo("mousedown", "1")
@@ -264,7 +271,8 @@ class Driver(threading.Thread):
             self.send("paint stroke: undo", "edit", "ctrl+z")
             self.send("paint stroke: redo", "edit", "ctrl+shift+z")
         xdo("key", "Escape")  # leave painting
-        self._wind()
+        if self.reps("wind"):
+            self._wind()
 
     def _wind(self) -> None:
         """Frames shown per second while the wind blows (drafts count)."""
