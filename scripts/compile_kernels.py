@@ -42,7 +42,7 @@ def main() -> None:
     k_m = np.zeros((2, 3), np.float32)
     row = np.zeros(3, np.float32)
     through = np.ones((2, 3), np.float32)
-    _seen(row[:2], k_m, k_m, k_m, row, row, through, 0.1, 1.0, True, k_m.copy(), k_m.copy())
+    _seen(row[:2], k_m, k_m, k_m, row, row, through, 0.1, 1.0, k_m.copy(), k_m.copy())
     print(f"sward setup: numba kernels compiled in {time.perf_counter() - start:.1f} s")
 
 
