@@ -107,7 +107,7 @@ def facing_moments(
     n = (n[keep] / length[keep, None])[pick]
     e = directions(azimuths, elevations).reshape(-1, 3)
     # the (k, m) weights and their products in single precision (the sums' tables agree with
-    # double precision's to under 1e-6: tests/core/test_facing_light.py); the light's side is
+    # double precision's to under 1e-6: tests/core/test_light_moments.py); the light's side is
     # a product with these sums (core/light_moments.py)
     w = np.abs(n.astype(np.float32) @ e.T.astype(np.float32))  # |n · e|
     through = np.ones((len(n), 1))  # what reaches each vertex, by table row
