@@ -756,6 +756,9 @@ def main(argv: list[str] | None = None) -> int:
     except CliError as exc:
         print(f"{name}: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader went away (`sward profile ... | head`): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # nothing left to flush
+        return 141
     except Exception as exc:  # GL or environment failures: one line, no traceback
         from render.context import GLUnavailableError
 

@@ -96,6 +96,20 @@ def test_scenes_lists_patch_grid():
     assert r.returncode == 0 and "patch-grid" in r.stdout
 
 
+def test_output_read_by_a_reader_that_stops_early_ends_without_a_traceback():
+    """`sward scenes | head -1`: the reader goes away before the listing is written."""
+    with subprocess.Popen(
+        [sys.executable, "-m", "app.cli", "scenes"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    ) as p:
+        p.stdout.close()
+        err = p.stderr.read()
+        assert p.wait(timeout=120) == 141
+    assert "Traceback" not in err and "Exception ignored" not in err, err
+
+
 def test_profile_prints_the_table_and_the_parts_add_up(tmp_path):
     out = tmp_path / "profile.json"
     r = sward(
