@@ -3,9 +3,9 @@ it is of: the light tables' sums over a patch's blades (render/facing.py) and ho
 ground mesh's vertices sink under the height map (render/design_maps.py). Handed between the
 designer's two render processes, and from one run of Sward to the next.
 
-Both render processes need the sums of every new patch, and on a CPU renderer a build takes a
-good part of a second: the slope sums 0.3 s a patch, each facing table 0.1 s, the meadow's
-ground 0.15 s. The first process to need something claims it (a claim file, made exclusively),
+Both render processes need the sums of every new patch, and on a CPU renderer their build (the
+slope sums, the facing tables, the ground's sink) takes a good part of a second
+(docs/edits.md). The first process to need something claims it (a claim file, made exclusively),
 builds it and writes it; the other waits for that file instead of building it too (or, when it
 must not wait, draws with what it holds). The folder outlives the designer: the next start, a
 `sward render` of the same scene, an undo to a patch built in an earlier session find it there.
