@@ -128,8 +128,11 @@ def ridged_hills(size: int, seed: int = 3) -> np.ndarray:
 # surface whose second directional derivatives are at most M strays from it by at most
 # M · r² / 2, r the triangle's circumradius: M (a² + b²) / 8 for half of an a × b quad, and never
 # more than the cell's height range. A grid is fine enough where that error, seen from the eye,
-# is under half a pixel; far away a single cell needs a quad or two where a fixed grid of 6 × 6
-# gave llvmpipe dozens of triangles of a few pixels each.
+# is under a pixel: the slice carries the top view read at its footprint's mip level, whose
+# detail is a pixel wide, and a finer grid's small triangles cost a multisampled pass dearly
+# (each pixel along a shared edge is shaded once per triangle that covers a sample of it; every
+# 4 × 4 block a triangle touches is shaded whole on llvmpipe). Far away a single cell needs a
+# quad or two where a fixed grid of 6 × 6 gave llvmpipe dozens of triangles of a few pixels each.
 SLICE_GRIDS = (1, 2, 3, 4, 6)  # the grids an image-based slice is drawn with, quads per side
 
 
@@ -223,7 +226,7 @@ def slice_grids(
     pixel: float,
     curvature: float | np.ndarray,
     grids: tuple[int, ...] = SLICE_GRIDS,
-    tolerance: float = 0.5,
+    tolerance: float = 1.0,
 ) -> np.ndarray:
     """Per instance (core/grid.py INSTANCE_DTYPE), the coarsest of `grids` whose chords stray
     from the ground by less than `tolerance` pixels seen from `eye` (world x, y, z) at its

@@ -86,8 +86,8 @@ class ImageRenderer:
         # On llvmpipe the grid's small triangles cost most of the pass (every 4 × 4 pixel block
         # a triangle touches is shaded whole): flat cells get one quad, which lies within
         # flat_ground of the ground wherever that varies by less, so it stays above it; the
-        # others the coarsest grid whose chords stray from the ground by under half a pixel
-        # seen from the eye (`view`), or the finest without one.
+        # others the coarsest grid whose chords stray from the ground by under a pixel seen
+        # from the eye (`view`; core/heights.py slice_grids), or the finest without one.
         self.batches = {n: _Batch(ctx, self.program, n) for n in SLICE_GRIDS}
         # (eye, radians a pixel, the terrain: its ground's bends, core/terrain.py curvature_of),
         # set each frame

@@ -63,4 +63,4 @@ def test_far_cells_on_the_meadow_take_coarser_grids_and_the_same_picture(headles
     counts = {n: batch.instance_count for n, batch in grass.image.batches.items()}
     assert counts[6] == sum(c for n, c in counts.items() if n > 1)
     moved = np.abs(adaptive.astype(int) - finest.astype(int)).max(axis=-1)
-    assert (moved > 24).mean() < 0.001  # under half a pixel's shift: a few edge pixels
+    assert (moved > 24).mean() < 0.001  # under a pixel's shift: a few edge pixels
