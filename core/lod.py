@@ -212,7 +212,7 @@ class LodConfig:
         each geometry level begins `reach` times as far out, and the geometry level runs on to
         at least HAND_OVER_BAND past that begin, so that the two still blend. The slices hold
         the grass at rest, and the bent blades' light is the volume's largest miss where it
-        begins, nearest the eye (README "Wind"). Held inside the levels after it: the next
+        begins, nearest the eye (docs/wind.md). Held inside the levels after it: the next
         level keeps part of its own zone and no three levels overlap."""
         if reach == 1.0:
             return self

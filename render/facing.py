@@ -222,7 +222,7 @@ class SlopeTable:
     ground's facing table); one 3D float texture (shaders/_lighting.glsl slope_ratios), ones
     until the grass type has slices (its canopy), rewritten when the patch, the canopy or the
     light changes, from the sums kept_slope_moments keeps. (The volume's ratio on the
-    image-based grass made the meadow's far field worse: README.)"""
+    image-based grass made the meadow's far field worse: docs/lod-quality.md.)"""
 
     def __init__(
         self,

@@ -164,7 +164,7 @@ def lean_means(vertices, canopy, light_dir, translucency, to_eye, leans):
     elevation that reaches the vertex), at the vertices' bent heights, the bent canopy stretched
     back to its height at rest (weighing them at their heights at rest, the model predicted
     brighter blades where they measure darker). The model of a table for the far
-    representations under the wind: it holds looking down, not at grazing views (README,
+    representations under the wind: it holds looking down, not at grazing views (docs/wind.md,
     wind)."""
     from core.slopes import slope_moments
     from core.wind import bend_vertices

@@ -309,7 +309,7 @@ void main() {
     // what the slices' texels lack against the blades at these distances, measured (with
     // 1.0 the volume met the blades 10/255 too low near the eye in tests/render/
     // test_far_field.py's height view; 1.5 gave the best sward quality figures of 1.0 … 2.0,
-    // README).
+    // docs/lod-quality.md).
     const float CROSSING_GAIN = 1.0;
     float crossing = CROSSING_GAIN * length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
     float depth_lambda = -1.0;
@@ -492,7 +492,7 @@ void main() {
         // layer of random blades thins: transmittance (1 - a)^share, like the crossing above.
         // Scaling the alpha by the share made half the blades cover half as much where they
         // cover more than half of it: at the hand-over from the blades (whose other half are
-        // drawn as geometry) the ground showed between the two (sward quality, README: meadow
+        // drawn as geometry) the ground showed between the two (sward quality, docs/lod-quality.md: meadow
         // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
         float share = lod_share(data.a, side_spread, density,
                                 lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
