@@ -40,7 +40,7 @@ def test_variants_that_load_render_a_sane_frame(headless, tmp_path):
         image, stats = headless(doc).render(doc.camera(), SIZE)
         assert image.shape == (SIZE[1], SIZE[0], 3) and image.dtype == np.uint8
         assert all(math.isfinite(v) for v in (stats.t_a_ms, stats.t_g_ms, stats.t_v_ms))
-        assert min(stats.c_g, stats.c_v, stats.c_i) >= 0
+        assert image.std() > 1.0  # a picture: sky, ground or grass, not one flat colour
         rendered += 1
     assert rendered >= 4 and refused >= 4
 

@@ -1,7 +1,5 @@
 """The designer in a real window under Xvfb: drive the controls, check model and image."""
 
-import time
-
 import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, Qt
@@ -85,13 +83,13 @@ def test_compare_mode_with_technique_colours_shows_three_columns(window, qtbot):
     assert not any(m.mean() > 0.01 for m in technique_shares(grab(window)).values())
 
 
-def test_slice_count_edit_reconverts_without_blocking_and_undoes(window, qtbot):
+def test_slice_count_edit_reconverts_in_the_render_processes_and_undoes(window, qtbot):
+    """The window's process only changes the document; the render processes convert (how
+    long the window's thread is busy meanwhile: `sward bench --suite latency`)."""
     window.mode_actions["volume"].trigger()
     wait_for_slices(window, qtbot)
     assert window.viewport.renderer_facts()["volume_slices"] == 8
-    started = time.monotonic()
     window.panel.param("slices").setValue(2)
-    assert time.monotonic() - started < 0.5  # converting happens in the render processes
     assert window.document.slices.slices == 2
     wait_for_slices(window, qtbot)
     assert window.viewport.renderer_facts()["volume_slices"] == 2
