@@ -110,3 +110,37 @@ def test_after_its_first_frame_the_full_process_yields_the_cores_to_drafts(windo
     assert len(os.listdir(f"/proc/{full}/task")) > 1  # llvmpipe's threads among them
     qtbot.waitUntil(lambda: policies(full) == {os.SCHED_IDLE}, timeout=5000)
     assert os.SCHED_IDLE not in policies(vp.renderer.pids["draft"])
+
+
+WINDOW_PROCESS = """
+import sys, time
+from PySide6.QtWidgets import QApplication
+app = QApplication(sys.argv)
+from app.designer import DesignerWindow
+from app.scenes import get_scene
+window = DesignerWindow(get_scene("patch-grid").document())
+window.show()
+start = time.monotonic()
+while window.viewport.last_stats.preview or window.viewport.last_stats.t_a_ms <= 0.0:
+    app.processEvents()
+    time.sleep(0.01)
+    if time.monotonic() - start > 120:
+        sys.exit("no full frame")
+gl = sorted(m for m in sys.modules if m.split(".")[0] in ("moderngl", "glcontext"))
+window.close()
+print("GL:", ",".join(gl))
+"""
+
+
+def test_the_window_process_shows_full_frames_without_importing_gl(tmp_path):
+    """The designer's own process draws no GL: after its first full-quality frame is on
+    screen, neither moderngl nor glcontext has been imported there (the render processes
+    draw; DESIGN.md)."""
+    env = {**os.environ, "QT_QPA_PLATFORM": "xcb", "SWARD_CACHE": str(tmp_path)}
+    env["XDG_CONFIG_HOME"] = str(tmp_path)  # the window's settings of its own
+    r = subprocess.run(
+        [sys.executable, "-c", WINDOW_PROCESS], capture_output=True, text=True, env=env,
+        timeout=240,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.strip().splitlines()[-1] == "GL:", r.stdout
