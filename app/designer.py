@@ -26,6 +26,7 @@ from app.painting import PaintController
 from app.project_actions import ProjectActions
 from app.qt_dialogs import QtDialogs
 from app.scenes import DEFAULT_SCENE, get_scene
+from app.status_line import quality_text, status_text
 from core.brush import Stroke
 from core.document import CameraSpec, Document
 from widgets.light_panel import LightPanel
@@ -312,24 +313,13 @@ class DesignerWindow(QMainWindow):
         self._show_status(self.viewport.last_stats)
 
     def _show_status(self, stats) -> None:
-        busy = f"{self._renderer_status} · " if self._renderer_status else ""
-        if stats.preview:  # a draft is timed as a whole only
-            timing = f"draft {stats.t_a_ms:.0f} ms, full quality follows"
-        else:
-            timing = (
-                f"frame {stats.t_a_ms:.0f} ms "
-                f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
-            )
-        self.status.setText(
-            busy + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
-            f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {timing}"
-            + ("  ·  fly mode (WASD, Q/E, F to leave)" if self.viewport.fly_mode else "")
-        )
-        figures = self.viewport.quality_figures
-        if figures is not None:
-            self.status.setText(quality_text(figures))
-        elif self.viewport.quality and not busy:
-            self.status.setText("quality: waiting for the view to rest · " + self.status.text())
+        vp = self.viewport
+        text = status_text(stats, self._renderer_status, vp.fly_mode)
+        if vp.quality_figures is not None:
+            text = quality_text(vp.quality_figures)
+        elif vp.quality and not self._renderer_status:
+            text = "quality: waiting for the view to rest · " + text
+        self.status.setText(text)
 
     def save_image_dialog(self) -> None:
         w, h = self.viewport.width(), self.viewport.height()
@@ -403,19 +393,3 @@ def run_designer(scene_name: str = DEFAULT_SCENE) -> int:
     window.show()
     window.autosave.recover_if_any()
     return app.exec()
-
-
-def quality_text(figures: dict) -> str:
-    """One status line of the Quality view's figures."""
-    lod = figures["lod"]
-    parts = [
-        f"{name} {t['flip_quarter']:.3f}"
-        for name, t in figures["techniques"].items()
-        if t["flip_quarter"] is not None
-    ]
-    return (
-        f"quality against all-geometry: FLIP {lod['flip_quarter']:.3f} (quarter resolution; "
-        f"{', '.join(parts) or 'no grass'}) · block colour {lod['block_color']:.3f} · "
-        f"LOD {figures['lod_ms']:.0f} ms, all-geometry {figures['geometry_ms']:.0f} ms "
-        f"({figures['speedup']:.1f}x faster)"
-    )

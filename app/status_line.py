@@ -1,0 +1,40 @@
+"""The designer's status line: what the last frame drew and what it cost, or the Quality view's
+figures (plain text, no Qt: app/designer.py sets it)."""
+
+from __future__ import annotations
+
+from core.stats import FrameStats
+
+
+def status_text(stats: FrameStats, busy: str = "", fly_mode: bool = False) -> str:
+    """Blades, triangles, the cells of each representation and the frame's time (a draft's as
+    a whole); `busy`: what a render process says it is doing."""
+    if stats.preview:  # a draft is timed as a whole only
+        timing = f"draft {stats.t_a_ms:.0f} ms, full quality follows"
+    else:
+        timing = (
+            f"frame {stats.t_a_ms:.0f} ms "
+            f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
+        )
+    return (
+        (f"{busy} · " if busy else "")
+        + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
+        f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {timing}"
+        + ("  ·  fly mode (WASD, Q/E, F to leave)" if fly_mode else "")
+    )
+
+
+def quality_text(figures: dict) -> str:
+    """One status line of the Quality view's figures."""
+    lod = figures["lod"]
+    parts = [
+        f"{name} {t['flip_quarter']:.3f}"
+        for name, t in figures["techniques"].items()
+        if t["flip_quarter"] is not None
+    ]
+    return (
+        f"quality against all-geometry: FLIP {lod['flip_quarter']:.3f} (quarter resolution; "
+        f"{', '.join(parts) or 'no grass'}) · block colour {lod['block_color']:.3f} · "
+        f"LOD {figures['lod_ms']:.0f} ms, all-geometry {figures['geometry_ms']:.0f} ms "
+        f"({figures['speedup']:.1f}x faster)"
+    )
