@@ -98,8 +98,8 @@ def _moments_arrays(prefix: str, m: LightMoments) -> dict[str, np.ndarray]:
 def _moments_of(f, prefix: str) -> LightMoments:
     from core.light_moments import LightMoments
 
-    # kept in single precision as written: a double copy of the slope sums (2 × 7 MB a patch)
-    # cost a start's first frame 30 ms; LightMoments.lit works in either
+    # kept in single precision as written: no double copy of the slope sums (their largest
+    # array) in a start's first frame; LightMoments.lit works in either
     powers, signed, total = (np.asarray(f[f"{prefix}{name}"], np.float32) for name in _FIELDS)
     shape = total.shape
     if powers.shape[:-1] != shape or signed.shape != (*shape, 3):

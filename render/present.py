@@ -37,8 +37,8 @@ class Presenter:
     def resolve(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, samples: int) -> None:
         """Average the `samples` samples of each pixel of `fbo` (its colour a texture; 0: one
         sample) into `out`, of the same size. One pass of our own rather than a blit: on
-        llvmpipe a process's first blit readied its resolve for 30 ms, this program's variant
-        for a few (kept in Mesa's shader cache)."""
+        llvmpipe the blit builds its resolve anew in every process, while this program
+        comes from Mesa's shader cache (docs/latency.md, the one-shot render)."""
         self._draw(fbo, out, fbo.size, (f"RESOLVE {max(samples, 1)}",))
 
     def _draw(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size, defines) -> None:
