@@ -10,7 +10,9 @@ view connects `document.events.<name>` without Qt.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any, Generic, TypeVar, overload
 
 import numpy as np
 from psygnal import Signal, SignalGroup
@@ -26,6 +28,7 @@ from core.props import boxes
 from core.terrain import Terrain
 from core.wind import Wind
 
+T = TypeVar("T")
 MAIN_GRASS = "main grass"  # the first grass type's name (density channel 0)
 
 
@@ -89,18 +92,106 @@ class TerrainSpec:
             raise ValueError(f"height scale {self.height_scale:g} is out of range; 0 … 10000")
 
 
-class DocumentEvents(SignalGroup):
-    params = Signal(int, object)  # grass type, PatchParams
-    lod = Signal(int, object)  # grass type, LodConfig
-    density = Signal(float)
-    slices = Signal(object)  # SliceParams
-    light = Signal(object)  # Lighting
-    wind = Signal(object)  # Wind
-    cameras = Signal(object)  # dict name -> CameraSpec
-    terrain = Signal(object)  # Terrain, rebuilt after the height map changed
+def _check_type(kind: type[T]) -> Callable[[Document, Any], T]:
+    def check(_doc: Document, value: Any) -> T:
+        if not isinstance(value, kind):
+            raise TypeError(f"expected a {kind.__name__}, got {type(value).__name__}")
+        return value
+
+    return check
+
+
+def _check_density(_doc: Document, value: float) -> float:
+    if not 0.0 <= value <= 1.0:
+        raise ValueError(f"density = {value:g} is out of range; allowed 0 … 1")
+    return float(value)
+
+
+def _check_cameras(doc: Document, value: dict) -> dict[str, CameraSpec]:
+    value = dict(value)
+    if not all(isinstance(spec, CameraSpec) for spec in value.values()):
+        raise TypeError("cameras must be CameraSpecs")
+    if getattr(doc, "_default_camera", None) not in (None, *value):
+        raise ValueError(f"the default camera {doc.default_camera!r} cannot be removed")
+    return value
+
+
+def _check_default_camera(doc: Document, value: str) -> str:
+    if value not in doc.cameras:
+        raise ValueError(f"default camera {value!r} is not one of the cameras")
+    return value
+
+
+def _check_paths(_doc: Document, value: dict) -> dict[str, tuple[CameraSpec, ...]]:
+    value = {name: tuple(keys) for name, keys in dict(value).items()}
+    if not all(isinstance(k, CameraSpec) for keys in value.values() for k in keys):
+        raise TypeError("camera paths must be CameraSpecs")
+    return value
+
+
+def _check_props(_doc: Document, value: tuple) -> tuple[Prop, ...]:
+    value = tuple(value)
+    if not all(isinstance(prop, Prop) for prop in value):
+        raise TypeError("props must be Props")
+    return value
+
+
+def _check_terrain_spec(doc: Document, value: TerrainSpec) -> TerrainSpec:
+    _check_type(TerrainSpec)(doc, value)
+    old = getattr(doc, "_terrain_spec", None)
+    if old is not None and (value.columns, value.rows) != (old.columns, old.rows):
+        raise ValueError("the terrain's size is fixed with its maps")
+    if value != old:
+        doc._terrain = None  # built again from the new spec when next asked for
+    return value
+
+
+class _Field(Generic[T]):
+    """A document value declared once: how it is checked, its event (`events.<name>`, sent
+    only when the value changed) and its place in `Document.apply`. Dictionaries are handed
+    out as copies, so a change always goes through the setter."""
+
+    def __init__(self, check: Callable[[Document, Any], T], doc: str = "") -> None:
+        self.check = check
+        self.__doc__ = doc
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name, self.slot = name, f"_{name}"
+
+    @overload
+    def __get__(self, doc: None, owner: type) -> _Field[T]: ...
+
+    @overload
+    def __get__(self, doc: Document, owner: type) -> T: ...
+
+    def __get__(self, doc: Document | None, owner: type) -> _Field[T] | T:
+        if doc is None:
+            return self
+        value = getattr(doc, self.slot)
+        return dict(value) if isinstance(value, dict) else value  # type: ignore[return-value]
+
+    def __set__(self, doc: Document, value: T) -> None:
+        value = self.check(doc, value)
+        if not hasattr(doc, self.slot):
+            setattr(doc, self.slot, value)  # the first value: nobody listens yet
+        elif value != getattr(doc, self.slot):
+            setattr(doc, self.slot, value)
+            getattr(doc.events, self.name).emit(dict(value) if isinstance(value, dict) else value)
 
 
 class Document:
+    name = _Field(_check_type(str), "The project's name.")
+    description = _Field(_check_type(str))
+    density = _Field(_check_density, "The global density, 0 … 1.")
+    slices = _Field(_check_type(SliceParams), "How patches become slices.")
+    light = _Field(_check_type(Lighting), "Sun, ambient light and fog (core/lighting.py).")
+    wind = _Field(_check_type(Wind), "The wind over the terrain (core/wind.py).")
+    cameras = _Field(_check_cameras, "The named cameras, bookmarks among them.")
+    default_camera = _Field(_check_default_camera)
+    paths = _Field(_check_paths, "Camera paths: name -> key cameras.")
+    props = _Field(_check_props, "Boxes and rocks standing in the grass.")
+    terrain_spec = _Field(_check_terrain_spec, "The grid of cells and how its ground is shaped.")
+
     def __init__(
         self,
         name: str,
@@ -123,24 +214,36 @@ class Document:
         channels = [kind.channel for kind in grass_types]
         if len(set(channels)) != len(channels):
             raise ValueError("two grass types share one density channel")
-        cameras = dict(cameras or {"default": CameraSpec((0.0, 5.0, 10.0), (0.0, 0.0, 0.0))})
-        if default_camera not in cameras:
-            raise ValueError(f"default camera {default_camera!r} is not one of the cameras")
         self.events = DocumentEvents()
-        self.name, self.description = name, description
         self._grass = list(grass_types)
-        self.terrain_spec = terrain
-        self.maps = maps
-        self._density = 1.0
-        self.density = density
-        self._slices = slices or SliceParams()
-        self._light = light or Lighting()
-        self._wind = wind or Wind()
-        self._cameras = cameras
-        self.default_camera = default_camera
-        self.paths = dict(paths or {})
-        self.props = tuple(props)
         self._terrain: Terrain | None = None
+        self.maps = maps
+        self.name, self.description = name, description
+        self.terrain_spec = terrain
+        self.density = density
+        self.slices = slices or SliceParams()
+        self.light = light or Lighting()
+        self.wind = wind or Wind()
+        self.cameras = cameras or {"default": CameraSpec((0.0, 5.0, 10.0), (0.0, 0.0, 0.0))}
+        self.default_camera = default_camera
+        self.paths = paths or {}
+        self.props = props
+
+    # -- one change, made again --------------------------------------------------------------
+    def apply(self, name: str, args: tuple) -> None:
+        """Make a change that another document's `events.all` announced (the event's name and
+        arguments): the render processes' copies follow the window's document through this one
+        method. The terrain event carries no arguments here: the copy rebuilds its own."""
+        if name == "params":
+            self.set_params(*args)
+        elif name == "lod":
+            self.set_lod(*args)
+        elif name == "terrain":
+            self.rebuild_terrain()
+        elif isinstance(getattr(Document, name, None), _Field):
+            setattr(self, name, *args)
+        else:
+            raise ValueError(f"no document field {name!r}")
 
     # -- grass types -------------------------------------------------------------------------
     @property
@@ -185,76 +288,12 @@ class Document:
         for index, lod in enumerate(lods):
             self.set_lod(index, lod)
 
-    # -- simple values -----------------------------------------------------------------------
-    @property
-    def density(self) -> float:
-        return self._density
-
-    @density.setter
-    def density(self, value: float) -> None:
-        if not 0.0 <= value <= 1.0:
-            raise ValueError(f"density = {value:g} is out of range; allowed 0 … 1")
-        if value != self._density:
-            self._density = float(value)
-            self.events.density.emit(self._density)
-
-    @property
-    def slices(self) -> SliceParams:
-        return self._slices
-
-    @slices.setter
-    def slices(self, value: SliceParams) -> None:
-        if not isinstance(value, SliceParams):
-            raise TypeError("slices must be a SliceParams")
-        if value != self._slices:
-            self._slices = value
-            self.events.slices.emit(value)
-
-    @property
-    def light(self) -> Lighting:
-        """Sun, ambient light and fog (core/lighting.py)."""
-        return self._light
-
-    @light.setter
-    def light(self, value: Lighting) -> None:
-        if not isinstance(value, Lighting):
-            raise TypeError("light must be a Lighting")
-        if value != self._light:
-            self._light = value
-            self.events.light.emit(value)
-
-    @property
-    def wind(self) -> Wind:
-        """The wind over the terrain (core/wind.py)."""
-        return self._wind
-
-    @wind.setter
-    def wind(self, value: Wind) -> None:
-        if not isinstance(value, Wind):
-            raise TypeError("wind must be a Wind")
-        if value != self._wind:
-            self._wind = value
-            self.events.wind.emit(value)
-
-    @property
-    def cameras(self) -> dict[str, CameraSpec]:
-        """The named cameras (bookmarks among them); a copy."""
-        return dict(self._cameras)
-
-    @cameras.setter
-    def cameras(self, value: dict[str, CameraSpec]) -> None:
-        value = dict(value)
-        if self.default_camera not in value:
-            raise ValueError(f"the default camera {self.default_camera!r} cannot be removed")
-        if value != self._cameras:
-            self._cameras = value
-            self.events.cameras.emit(dict(value))
-
+    # -- cameras -----------------------------------------------------------------------------
     def camera(self, name: str | None = None) -> Camera:
         name = name or self.default_camera
-        if name not in self._cameras:
+        if name not in self.cameras:
             raise KeyError(name)
-        return self._cameras[name].camera()
+        return self.cameras[name].camera()
 
     def path_cameras(self, name: str, frames: int) -> list[Camera]:
         """`frames` cameras spread along the named path."""
@@ -300,7 +339,7 @@ class Document:
         def ground(spec: CameraSpec) -> float:
             return self.ground_at(spec.eye[0], spec.eye[2])
 
-        specs = [*self._cameras.values(), *(k for keys in self.paths.values() for k in keys)]
+        specs = [*self.cameras.values(), *(k for keys in self.paths.values() for k in keys)]
         before = [ground(s) for s in specs]
         if values is not None:
             self.maps.write("height", 0, 0, values)
@@ -317,7 +356,7 @@ class Document:
             )
 
         shifted = iter([moved(s, old) for s, old in zip(specs, before, strict=True)])
-        self.cameras = {name: next(shifted) for name in self._cameras}
+        self.cameras = {name: next(shifted) for name in self.cameras}
         self.paths = {name: tuple(next(shifted) for _ in keys) for name, keys in self.paths.items()}
 
     def rebuild_terrain(self) -> Terrain:
@@ -353,17 +392,22 @@ class Document:
         )
 
     def _fields(self) -> tuple:
-        return (
-            self.name,
-            self.description,
-            tuple(self._grass),
-            self.terrain_spec,
-            self._density,
-            self._slices,
-            self._light,
-            self._cameras,
-            self.default_camera,
-            self.paths,
-            self.props,
-            self._wind,
-        )
+        return (tuple(self._grass), *(getattr(self, f"_{name}") for name in FIELDS))
+
+
+FIELDS = tuple(name for name, value in vars(Document).items() if isinstance(value, _Field))
+
+# One signal per document field (Document's `_Field`s) and three more: a grass type's blade
+# parameters or LOD levels changed (its index, the new value), and the terrain was rebuilt after
+# the height map changed (`Document.rebuild_terrain`). `events.all` relays every one of them:
+# the render processes follow the document through it.
+DocumentEvents = type(
+    "DocumentEvents",
+    (SignalGroup,),
+    {
+        "params": Signal(int, object),  # grass type, PatchParams
+        "lod": Signal(int, object),  # grass type, LodConfig
+        "terrain": Signal(object),  # Terrain, rebuilt after the height map changed
+        **{name: Signal(object) for name in FIELDS},
+    },
+)

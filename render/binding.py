@@ -27,6 +27,7 @@ class DocumentBinding:
             "slices": self._on_slices,
             "light": self._on_light,
             "terrain": self._on_terrain,
+            "props": self._on_props,
             "wind": self._on_wind,
         }
         self._fully_synchronize()
@@ -71,3 +72,7 @@ class DocumentBinding:
 
     def _on_terrain(self, terrain: Terrain) -> None:
         self.pipeline.set_terrain(terrain)
+        self._on_props()  # props stand on the ground as it is now
+
+    def _on_props(self, _props: object = None) -> None:
+        self.pipeline.set_props(self.document.prop_boxes())

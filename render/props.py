@@ -135,11 +135,13 @@ class PropRenderer:
             "rock": _Shape(ctx, self.program, _rock()),
         }
         self.count = 0
+        self.boxes = np.zeros(0, PROP_DTYPE)  # what is drawn: centres on the ground as it is
 
     def set_props(self, props: np.ndarray) -> None:
         if props.dtype != PROP_DTYPE:
             raise TypeError("props must be a PROP_DTYPE array")
         self.count = int(props.size)
+        self.boxes = props.copy()
         for index, name in enumerate(SHAPES):
             self.shapes[name].set_instances(props[props["shape"] == index])
 

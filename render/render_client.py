@@ -14,7 +14,7 @@ import shutil
 import subprocess
 import tempfile
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from multiprocessing.connection import Connection
 from time import monotonic
 
@@ -25,6 +25,7 @@ from core.document import Document
 from core.project_file import document_data
 from core.stats import FrameStats
 from render import derived_cache, process_start
+from render import protocol as msg
 from render.derived_cache import SHARED_DIR_ENV
 from render.mapped import MappedArray
 from render.process_start import FULL, ROLES
@@ -44,7 +45,7 @@ def _new_file(nbytes: int, prefix: str) -> str:
 @dataclass
 class Frame:
     version: int
-    kind: str  # view | image | quality
+    purpose: msg.Purpose
     image: np.ndarray  # (h, w, 4) uint8, top row first (quality: the difference heat map)
     stats: FrameStats
     figures: dict | None = None  # quality: LOD against all-geometry (core/quality.figures)
@@ -98,9 +99,8 @@ class RenderClient:
         self.on_restart = on_restart  # (role, what happened): a process died and was restarted
         self._document: Document | None = None
         self._dirty: dict[str, tuple[int, int, int, int]] = {}
-        self._replay: dict[str, tuple] = {}  # view state a restarted process needs again
-        self._last_request: dict | None = None
-        self._handlers: dict = {}
+        self._replay: dict[object, object] = {}  # view state a restarted process needs again
+        self._last_request: msg.FrameRequest | None = None
         self._changed: Callable[[], None] = lambda: None
         self._closed = False
         # the folder the two processes hand each other the light tables' sums in (render/
@@ -129,7 +129,7 @@ class RenderClient:
     def max_image_size(self) -> int:
         return self.processes[FULL].max_image_size
 
-    def _send(self, message: tuple, roles=ROLES) -> None:
+    def _send(self, message: object, roles=ROLES) -> None:
         if self._closed:
             return
         for role in roles:
@@ -167,23 +167,22 @@ class RenderClient:
         except (EOFError, OSError):
             self._restart(role)
 
-    def _handle(self, p: _Process, message: tuple) -> None:
-        kind, *args = message
-        if kind == "hello":
-            p.pid, p.max_image_size, _gl = args
-        elif kind == "frame":
-            version, frame_kind, (w, h), stats, figures = args
-            image = p.out.array[: w * h * 4].reshape(h, w, 4).copy()
-            p.conn.send(("ack",))
-            self.on_frame(Frame(version, frame_kind, image, stats, figures))
-        elif kind == "mapped":
-            p.forget_name(args[0])
-        elif kind == "status":
-            self.on_status(args[0])
-        elif kind == "facts":
-            p.facts[args[0]] = args[1]
-        elif kind == "error":
-            self.on_status(f"the {p.role} renderer failed: {args[0].strip().splitlines()[-1]}")
+    def _handle(self, p: _Process, message: object) -> None:
+        match message:
+            case msg.Hello(pid, size, _gl):
+                p.pid, p.max_image_size = pid, size
+            case msg.FrameReady(version, purpose, (w, h), stats, figures):
+                image = p.out.array[: w * h * 4].reshape(h, w, 4).copy()
+                p.conn.send(msg.Ack())
+                self.on_frame(Frame(version, purpose, image, stats, figures))
+            case msg.Mapped(path):
+                p.forget_name(path)
+            case msg.Status(text):
+                self.on_status(text)
+            case msg.Facts(token, facts):
+                p.facts[token] = facts
+            case msg.Failed(text):
+                self.on_status(f"the {p.role} renderer failed: {text.strip().splitlines()[-1]}")
 
     # -- the document ------------------------------------------------------------------------
     def attach(self, document: Document, changed: Callable[[], None]) -> None:
@@ -191,29 +190,19 @@ class RenderClient:
         self.detach()
         self.open(document)
         self._changed = changed
-        self._handlers = {
-            "params": lambda i, p: self._forward("params", i, p),
-            "lod": lambda i, c: self._forward("lod", i, c),
-            "density": lambda v: self._forward("set", "density", v),
-            "slices": lambda v: self._forward("set", "slices", v),
-            "light": lambda v: self._forward("set", "light", v),
-            "wind": lambda v: self._forward("set", "wind", v),
-            "terrain": lambda _t: self._forward("terrain"),
-        }
-        for name, handler in self._handlers.items():
-            getattr(document.events, name).connect(handler)
+        document.events.all.connect(self._on_event)
         document.maps.changed.connect(self._on_maps_changed)
 
     def detach(self) -> None:
-        if self._document is None or not self._handlers:
+        if self._document is None:
             return
-        for name, handler in self._handlers.items():
-            getattr(self._document.events, name).disconnect(handler)
+        self._document.events.all.disconnect(self._on_event)
         self._document.maps.changed.disconnect(self._on_maps_changed)
-        self._handlers = {}
 
-    def _forward(self, kind: str, *args) -> None:
-        self.change(kind, *args)
+    def _on_event(self, info) -> None:
+        """Any document event, as one Change (the rebuilt terrain is rebuilt there too)."""
+        name = info.signal.name
+        self.change(msg.Change(name, () if name == "terrain" else tuple(info.args)))
         self._changed()
 
     def _on_maps_changed(self, name: str, rect) -> None:
@@ -239,13 +228,12 @@ class RenderClient:
         p.stack.array[:] = stack
         # the same plain data a project file holds (JSON), so the replica is built as a load is
         data = json.loads(json.dumps(document_data(self._document)))
-        self._send(("open", data, p.stack.path, stack.shape), (role,))
+        self._send(msg.Open(data, p.stack.path, stack.shape), (role,))
 
-    def change(self, kind: str, *args) -> None:
-        """A change of the open document: params, lod, set (density / slices / light),
-        terrain."""
+    def change(self, change: msg.Change) -> None:
+        """A change of the open document, after the map rectangles changed before it."""
         self._flush_maps()
-        self._send((kind, *args))
+        self._send(change)
 
     def maps_changed(self, name: str, rect: tuple[int, int, int, int]) -> None:
         self._dirty[name] = union(self._dirty.get(name), rect)
@@ -260,14 +248,15 @@ class RenderClient:
             for p in self.processes.values():
                 if p.stack is not None:
                     p.stack.array[i, y : y + h, x : x + w, :c] = stack[i, y : y + h, x : x + w, :c]
-            self._send(("maps", name, (x, y, w, h)))
+            self._send(msg.MapsChanged(name, (x, y, w, h)))
         self._dirty.clear()
 
     # -- view state and frames ---------------------------------------------------------------
-    def set_view_state(self, kind: str, *args) -> None:
-        """mode, view, overlay (group, lines), continuous: kept for a restarted process."""
-        key = kind if kind != "overlay" else f"overlay:{args[0]}"
-        message = (kind, *args)
+    def set_view_state(
+        self, message: msg.SetMode | msg.SetView | msg.SetOverlay | msg.SetContinuous
+    ) -> None:
+        """How frames are drawn, kept for a restarted process (an overlay per group)."""
+        key = (type(message), getattr(message, "group", None))
         self._replay[key] = message
         self._send(message)
 
@@ -276,33 +265,28 @@ class RenderClient:
         version: int,
         camera,
         size: tuple[int, int],
-        kind: str = "view",
+        purpose: msg.Purpose = "live",
         time: float = 0.0,
         draft: bool = True,
     ) -> None:
-        """Ask for a frame of the current state: a draft and a full frame (`view`; without
-        `draft` the full one alone), or only a full one (`image`: a screenshot of any size;
+        """Ask for a frame of the current state: a draft and a full frame (`live`; without
+        `draft` the full one alone), or only a full one (`screenshot`: of any size;
         `quality`: the LOD frame against an all-geometry reference, a heat map and figures);
         `time`: the moment of the wind."""
         if self._closed:
             return
         self._flush_maps()
-        request = {
-            "version": version,
-            "camera": camera,
-            "size": tuple(size),
-            "kind": kind,
-            "time": float(time),
-            "state_time": monotonic(),
-        }
-        if kind == "view":
+        request = msg.FrameRequest(
+            version, camera, (int(size[0]), int(size[1])), purpose, float(time), monotonic()
+        )
+        if purpose == "live":
             self._last_request = request
-        for role in ROLES if kind == "view" and draft else (FULL,):
+        for role in ROLES if purpose == "live" and draft else (FULL,):
             self._request_from(role, request)
 
-    def _request_from(self, role: str, request: dict) -> None:
+    def _request_from(self, role: str, request: msg.FrameRequest) -> None:
         p = self.processes[role]
-        w, h = request["size"]
+        w, h = request.size
         need = w * h * 4
         if p.out is None or p.out_capacity < need:
             if p.out is not None:
@@ -310,21 +294,22 @@ class RenderClient:
             capacity = max(need, 1920 * 1200 * 4)
             p.out = MappedArray(p.new_file(capacity, f"sward-{role}-"), (capacity,), np.uint8)
             p.out_capacity = capacity
-        self._send(("frame", dict(request, out_path=p.out.path, out_bytes=p.out_capacity)), (role,))
+        self._send(replace(request, out_path=p.out.path, out_bytes=p.out_capacity), (role,))
 
-    def query(self, token: int) -> None:
-        """Ask the full renderer for facts about its pipeline (answered into `facts`)."""
-        self._send(("query", token), (FULL,))
+    def query(self, token: int, role: str = FULL) -> None:
+        """Ask one renderer for facts about its pipeline and document (answered into
+        `facts` once it has handled every message sent before)."""
+        self._send(msg.Query(token), (role,))
 
-    def facts(self, token: int) -> dict | None:
-        return self.processes[FULL].facts.pop(token, None)
+    def facts(self, token: int, role: str = FULL) -> dict | None:
+        return self.processes[role].facts.pop(token, None)
 
     def close(self) -> None:
         self.detach()
         self._closed = True
         for p in self.processes.values():
             with contextlib.suppress(BrokenPipeError, OSError):
-                p.conn.send(("quit",))
+                p.conn.send(msg.Quit())
         for p in self.processes.values():
             try:
                 p.process.wait(timeout=5)

@@ -21,13 +21,15 @@ import contextlib
 import os
 import time
 import traceback
+from dataclasses import replace
 
 import numpy as np
 
 from core.design_maps import LAYER_INDEX, LAYERS
-from core.project_file import document_from_data
+from core.project_file import document_data, document_from_data
 from core.view_mode import ViewMode
 from render import context
+from render import protocol as msg
 from render.binding import DocumentBinding
 from render.frame import FrameAborted, FramePipeline
 from render.mapped import MappedArray
@@ -71,8 +73,8 @@ class RenderServer:
         self.binding: DocumentBinding | None = None
         self.stack: MappedArray | None = None
         self.out: MappedArray | None = None
-        self.request: dict | None = None  # the newest frame asked for
-        self.last: dict | None = None
+        self.request: msg.FrameRequest | None = None  # the newest frame asked for
+        self.last: msg.FrameRequest | None = None
         self.continuous = False
         self.waiting_ack = False
         self.refine = False  # a draft that lacked slices: convert, then draw it again
@@ -84,26 +86,34 @@ class RenderServer:
         self._targets: dict[tuple[int, int], object] = {}
 
     # -- messages ----------------------------------------------------------------------------
-    def handle(self, message: tuple) -> bool:
-        kind, *args = message
-        if kind == "quit":
-            return False
-        handlers = {
-            "open": self._on_open,
-            "params": self._on_params,
-            "lod": self._on_lod,
-            "set": self._on_set,
-            "terrain": self._on_terrain,
-            "maps": self._on_maps,
-            "mode": self._on_mode,
-            "view": self._on_view,
-            "overlay": self._on_overlay,
-            "continuous": self._on_continuous,
-            "frame": self._on_frame,
-            "ack": self._on_ack,
-            "query": self._on_query,
-        }
-        handlers[kind](*args)
+    def handle(self, message: object) -> bool:
+        """Apply one message from the window; False when it says quit."""
+        match message:
+            case msg.Quit():
+                return False
+            case msg.Open(data, stack_path, shape):
+                self._on_open(data, stack_path, shape)
+            case msg.Change(name, args):
+                self.document.apply(name, args)
+            case msg.MapsChanged(layer, rect):
+                self._on_maps(layer, rect)
+            case msg.SetMode(mode):
+                self.pipeline.set_mode(mode)
+            case msg.SetView(view):
+                self.pipeline.view = view
+            case msg.SetOverlay(group, lines):
+                self.pipeline.overlay.set_lines(group, lines)
+            case msg.SetContinuous(on):
+                self.continuous = bool(on) and self.role == FULL
+            case msg.FrameRequest():
+                self.request = message
+                self._asked_at = time.monotonic()
+            case msg.Ack():
+                self.waiting_ack = False
+            case msg.Query(token):
+                self._on_query(token)
+            case _:
+                raise ValueError(f"unknown message {message!r}")
         return True
 
     def _on_open(self, data: dict, stack_path: str, shape: tuple) -> None:
@@ -112,21 +122,9 @@ class RenderServer:
         if self.stack is not None:
             self.stack.close()
         self.stack = MappedArray(stack_path, shape)
-        self.conn.send(("mapped", stack_path))
+        self.conn.send(msg.Mapped(stack_path))
         self.document = document_from_data(data, self.stack.array)
         self.binding = DocumentBinding(self.pipeline, self.document)
-
-    def _on_params(self, index: int, params) -> None:
-        self.document.set_params(index, params)
-
-    def _on_lod(self, index: int, lod) -> None:
-        self.document.set_lod(index, lod)
-
-    def _on_set(self, name: str, value) -> None:  # density, slices, light, wind
-        setattr(self.document, name, value)
-
-    def _on_terrain(self) -> None:
-        self.document.rebuild_terrain()
 
     def _on_maps(self, name: str, rect: tuple[int, int, int, int]) -> None:
         if self.document is None:
@@ -135,25 +133,6 @@ class RenderServer:
         i = LAYER_INDEX[name]
         values = self.stack.array[i, y : y + h, x : x + w, : LAYERS[i].channels]
         self.document.maps.write(name, x, y, np.array(values))
-
-    def _on_mode(self, mode: str) -> None:
-        self.pipeline.set_mode(mode)
-
-    def _on_view(self, view: str) -> None:
-        self.pipeline.view = view
-
-    def _on_overlay(self, group: str, lines: list) -> None:
-        self.pipeline.overlay.set_lines(group, lines)
-
-    def _on_continuous(self, on: bool) -> None:
-        self.continuous = bool(on) and self.role == FULL
-
-    def _on_frame(self, request: dict) -> None:
-        self.request = request
-        self._asked_at = time.monotonic()
-
-    def _on_ack(self) -> None:
-        self.waiting_ack = False
 
     def _on_query(self, token: int) -> None:
         p = self.pipeline
@@ -167,8 +146,11 @@ class RenderServer:
             "patch_params": [g.patch.params if g.patch else None for g in p.grass_types],
             "height_scale": terrain.height_scale if terrain is not None else 0.0,
             "terrain_top": float(terrain.cell_max.max()) if terrain is not None else 0.0,
+            "prop_boxes": p.props.boxes.copy(),
+            # the document this process draws, as a project file holds it
+            "document": document_data(self.document) if self.document is not None else None,
         }
-        self.conn.send(("facts", token, facts))
+        self.conn.send(msg.Facts(token, facts))
 
     # -- drawing -----------------------------------------------------------------------------
     def _target(self, size: tuple[int, int]):
@@ -211,61 +193,61 @@ class RenderServer:
         image[..., 3] = 255
         return image, stats, found
 
-    def draw(self, request: dict) -> None:
-        self.pipeline.time = request.get("time", 0.0)  # the moment of the wind (viewport.py)
-        if request["kind"] == "quality":
+    def draw(self, request: msg.FrameRequest) -> None:
+        self.pipeline.time = request.time  # the moment of the wind (viewport.py)
+        if request.purpose == "quality":
             self._draw_quality(request)
             return
-        w, h = request["size"]
-        draft = self.role == DRAFT and request["kind"] == "view"
+        w, h = request.size
+        draft = self.role == DRAFT and request.purpose == "live"
         if draft:
             w, h = max(1, w // DRAFT_SCALE), max(1, h // DRAFT_SCALE)
         # a full frame, or a draft drawn again to show what refine_one made, gives way to any
         # message between its passes: input waits for no frame it would make stale
-        stoppable = self.role == FULL or request.get("again", False)
-        abort = self.conn.poll if stoppable and request["kind"] == "view" else None
+        stoppable = self.role == FULL or request.again
+        abort = self.conn.poll if stoppable and request.purpose == "live" else None
         fbo = self._target((w, h))
         try:
             # a draft is timed only as a whole: no ctx.finish() bubbles between its passes
             stats = self.pipeline.render(
-                request["camera"], fbo, (w, h), not draft, False, abort, draft=draft
+                request.camera, fbo, (w, h), not draft, False, abort, draft=draft
             )
         except FrameAborted:
-            if request.get("again", False) and self.request is None:
+            if request.again and self.request is None:
                 self.request = request  # after the message, unless a newer frame is asked for
             return
         stats.preview = draft
-        stats.state_time = request["state_time"]
+        stats.state_time = request.state_time
         self._send_frame(request, context.read_rgb(fbo, (w, h), 4), stats)
         if draft and (self.pipeline.missing() or self.pipeline.stale_light_sums()):
             if not self.refine:
                 self._lacked_at = time.monotonic()
             self.refine = True
 
-    def _draw_quality(self, request: dict) -> None:
-        size = tuple(request["size"])
+    def _draw_quality(self, request: msg.FrameRequest) -> None:
+        size = request.size
         fbo = self._target(size)
         try:
-            image, stats, found = self._quality(request["camera"], fbo, size, self.conn.poll)
+            image, stats, found = self._quality(request.camera, fbo, size, self.conn.poll)
         except FrameAborted:
             # drawn again once the message that stopped it is handled, unless that message
             # asks for a newer frame (which then takes its place)
             if self.request is None:
                 self.request = request
             return
-        stats.state_time = request["state_time"]
+        stats.state_time = request.state_time
         self._send_frame(request, image, stats, found)
 
-    def _send_frame(self, request: dict, image: np.ndarray, stats, extra=None) -> None:
+    def _send_frame(self, request: msg.FrameRequest, image: np.ndarray, stats, extra=None) -> None:
         h, w = image.shape[:2]
-        if self.out is None or self.out.path != request["out_path"]:
+        if self.out is None or self.out.path != request.out_path:
             if self.out is not None:
                 self.out.close()
-            self.out = MappedArray(request["out_path"], (request["out_bytes"],), np.uint8)
-            self.conn.send(("mapped", self.out.path))
+            self.out = MappedArray(request.out_path, (request.out_bytes,), np.uint8)
+            self.conn.send(msg.Mapped(self.out.path))
         self.out.array[: image.size] = image.reshape(-1)
         self.waiting_ack = True
-        self.conn.send(("frame", request["version"], request["kind"], (w, h), stats, extra))
+        self.conn.send(msg.FrameReady(request.version, request.purpose, (w, h), stats, extra))
         if self.role == FULL and not self._idle:
             _yield_to_others()
             self._idle = True
@@ -283,14 +265,14 @@ class RenderServer:
             if self.refine:  # the other process builds them: look again a little later
                 self._retry_at = time.monotonic() + RETRY_S
                 return False
-            self.conn.send(("status", ""))
+            self.conn.send(msg.Status(""))
             return True
         grass_type, n = p.missing()[0]
         patch = p.grass_types[grass_type].patch
         sp = p.slice_params
         what = (grass_type, n, patch, sp)
         if self._converting is None or self._converting[0] != what:
-            self.conn.send(("status", f"converting slices of grass type {grass_type + 1}"))
+            self.conn.send(msg.Status(f"converting slices of grass type {grass_type + 1}"))
             steps = p.converter.steps(patch, n, (sp.width, sp.height), sp.top)
             self._converting = (what, steps)
         try:  # one capture at a time: input that comes meanwhile waits for one, not for all
@@ -304,7 +286,7 @@ class RenderServer:
         )
         if not p.missing() and not p.stale_light_sums():
             self.refine = False
-            self.conn.send(("status", ""))
+            self.conn.send(msg.Status(""))
         return True
 
     def loop(self) -> None:
@@ -324,7 +306,7 @@ class RenderServer:
                 request, self.request = self.request, None
                 self.last = request
                 self.draw(request)
-                if self.continuous and request["kind"] == "view":
+                if self.continuous and request.purpose == "live":
                     self.request = request  # frame after frame, the same state
             elif self.refine:
                 now = time.monotonic()
@@ -338,7 +320,7 @@ class RenderServer:
                 if wait > 0.0 and self.conn.poll(wait):
                     continue  # a message first (a new frame asked for waits for no refinement)
                 if self.refine_one() and self.last is not None and self.request is None:
-                    self.request = {**self.last, "again": True}
+                    self.request = replace(self.last, again=True)
 
 
 def serve(conn, role: str) -> None:
@@ -348,13 +330,13 @@ def serve(conn, role: str) -> None:
     try:
         server = RenderServer(conn, role)
         size = int(server.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
-        conn.send(("hello", os.getpid(), size, context.describe(server.ctx)))
+        conn.send(msg.Hello(os.getpid(), size, context.describe(server.ctx)))
         server.loop()
     except (EOFError, BrokenPipeError, KeyboardInterrupt):
         return  # the window went away
     except Exception:
         try:
-            conn.send(("error", traceback.format_exc(limit=4)))
+            conn.send(msg.Failed(traceback.format_exc(limit=4)))
         except (BrokenPipeError, OSError):
             pass
         raise

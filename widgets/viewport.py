@@ -40,6 +40,7 @@ from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, z
 from core.stats import FrameStats
 from core.view_mode import ViewMode
 from core.wind import Wind
+from render import protocol as msg
 from render.render_client import Frame, RenderClient
 
 # LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
@@ -112,7 +113,7 @@ class GrassViewport(QWidget):
         self._notifiers: list[QSocketNotifier] = []
         self._watch()
         self.renderer.attach(document, self.request_frame)
-        self.renderer.set_view_state("mode", self._mode)
+        self.renderer.set_view_state(msg.SetMode(self._mode))
         document.events.wind.connect(self._on_wind)
         self._on_wind(document.wind)
         self.request_frame()
@@ -141,7 +142,7 @@ class GrassViewport(QWidget):
     def set_mode(self, mode: str) -> None:
         """A ViewMode: lod | geometry | volume | image | compare."""
         self._mode = ViewMode.parse(mode)
-        self.renderer.set_view_state("mode", self._mode)
+        self.renderer.set_view_state(msg.SetMode(self._mode))
         self.request_frame()
 
     @property
@@ -150,7 +151,7 @@ class GrassViewport(QWidget):
 
     def set_view(self, view: str) -> None:
         """shaded | techniques."""
-        self.renderer.set_view_state("view", view)
+        self.renderer.set_view_state(msg.SetView(view))
         self.request_frame()
 
     @property
@@ -184,7 +185,7 @@ class GrassViewport(QWidget):
     def set_continuous(self, on: bool) -> None:
         """Full frames one after another (profiling)."""
         self.continuous = on
-        self.renderer.set_view_state("continuous", on)
+        self.renderer.set_view_state(msg.SetContinuous(on))
         self.request_frame()
 
     def set_quality(self, on: bool) -> None:
@@ -210,7 +211,7 @@ class GrassViewport(QWidget):
             self._quality_asked = self.version
             self.status_changed.emit("quality: drawing the all-geometry reference")
             self.renderer.request(
-                self.version, self.camera, self._size(), kind="quality", time=self.wind_time
+                self.version, self.camera, self._size(), purpose="quality", time=self.wind_time
             )
 
     @property
@@ -238,7 +239,7 @@ class GrassViewport(QWidget):
             lod = lod.with_blade_reach(self.document.wind.reach)
             rings = zone_rings(self.document.terrain, self.camera.eye, lod.levels)
             lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
-            self.renderer.set_view_state("overlay", "zones", lines)
+            self.renderer.set_view_state(msg.SetOverlay("zones", lines))
         if self._wind_clock is not None:
             self.wind_time = monotonic() - self._wind_clock
             # the next moment, unless the full frame comes first
@@ -249,10 +250,10 @@ class GrassViewport(QWidget):
         )
 
     def _on_frame(self, frame: Frame) -> None:
-        if frame.kind == "image":
+        if frame.purpose == "screenshot":
             self._images[frame.version] = frame
             return
-        if frame.kind == "quality":
+        if frame.purpose == "quality":
             if self.quality and frame.version == self.version:
                 h, w = frame.image.shape[:2]
                 heat = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888)
@@ -302,11 +303,11 @@ class GrassViewport(QWidget):
         """The current view drawn at full quality at any size (screenshots larger than the
         window): (h, w, 3) uint8, top row first, without the brush outline and zone rings.
         The window keeps handling events while it waits."""
-        self.renderer.set_view_state("overlay", "brush", [])
-        self.renderer.set_view_state("overlay", "zones", [])
+        self.renderer.set_view_state(msg.SetOverlay("brush", []))
+        self.renderer.set_view_state(msg.SetOverlay("zones", []))
         self._token -= 1  # negative: never taken for a view's version
         version = self._token
-        self.renderer.request(version, self.camera, size, kind="image", time=self.wind_time)
+        self.renderer.request(version, self.camera, size, purpose="screenshot", time=self.wind_time)
         loop = QEventLoop()
         timer = QTimer(interval=20, timeout=lambda: version in self._images and loop.quit())
         timer.start()
@@ -319,17 +320,17 @@ class GrassViewport(QWidget):
             raise RuntimeError("the renderer did not draw the image in time")
         return np.ascontiguousarray(frame.image[..., :3])
 
-    def renderer_facts(self, timeout_s: float = 60.0) -> dict:
-        """What the full-quality renderer holds (slice counts, terrain, light, patches), once it
-        has handled every change sent before this call."""
+    def renderer_facts(self, timeout_s: float = 60.0, role: str = "full") -> dict:
+        """What a renderer holds (slice counts, terrain, light, patches, props, its copy of the
+        document), once it has handled every change sent before this call."""
         self._token -= 1
         token = self._token
-        self.renderer.query(token)
+        self.renderer.query(token, role)
         loop = QEventLoop()
         found: dict = {}
 
         def check() -> None:
-            facts = self.renderer.facts(token)
+            facts = self.renderer.facts(token, role)
             if facts is not None:
                 found.update(facts)
                 loop.quit()
@@ -378,7 +379,7 @@ class GrassViewport(QWidget):
     def set_show_zones(self, on: bool) -> None:
         self.show_zones = on
         if not on:
-            self.renderer.set_view_state("overlay", "zones", [])
+            self.renderer.set_view_state(msg.SetOverlay("zones", []))
         self.request_frame()
 
     def ground_at(self, x: float, y: float) -> np.ndarray | None:
@@ -404,7 +405,7 @@ class GrassViewport(QWidget):
             terrain = self.document.terrain
             radius = 0.5 * self.brush_size * terrain.columns / self.document.maps.size[0]
             lines.append((ground_circle(terrain, *self._hover, radius), BRUSH_COLOR))
-        self.renderer.set_view_state("overlay", "brush", lines)
+        self.renderer.set_view_state(msg.SetOverlay("brush", lines))
         self.request_frame()
 
     # -- mouse and keys ------------------------------------------------------------------------

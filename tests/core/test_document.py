@@ -232,3 +232,64 @@ def test_new_heights_keep_the_cameras_above_the_ground():
     key = doc.paths["walk"][0]
     assert key.eye[1] - doc.ground_at(key.eye[0], key.eye[2]) > 1.0
     assert doc.terrain.cell_max.max() > 15.0  # the quadtree follows the new ground
+
+
+def _replica(doc: Document) -> Document:
+    """A copy built from the project data and following `doc` through its one event relay,
+    as each render process follows the window's document (render/render_client.py)."""
+    from core.project_file import document_data, document_from_data
+
+    copy = document_from_data(document_data(doc), doc.maps.stack.copy())
+
+    def follow(info) -> None:
+        name = info.signal.name
+        if name == "terrain":
+            copy.maps.stack[:] = doc.maps.stack  # the maps travel apart from the events
+        copy.apply(name, () if name == "terrain" else tuple(info.args))
+
+    doc.events.all.connect(follow)
+    return copy
+
+
+def _every_field_kind(doc: Document) -> list:
+    """One change of each kind of document field, as the designer's panels make them."""
+    rock = Prop((1.0, 2.0), (0.5, 0.4, 0.5), (0.4, 0.4, 0.4), 0.0, "rock")
+    spec = CameraSpec((3.0, 4.0, 5.0), (0.0, 0.0, 0.0))
+    other = next(name for name in doc.cameras if name != doc.default_camera)
+    return [
+        ("params", lambda: doc.set_params(0, doc.params(0).replace(blade_count=77))),
+        ("lod", lambda: doc.set_lod(0, LodConfig.zones(geometry_end=3.0, volume_end=9.0))),
+        ("density", lambda: setattr(doc, "density", 0.3)),
+        ("slices", lambda: setattr(doc, "slices", SliceParams(slices=2))),
+        ("light", lambda: setattr(doc, "light", Lighting(sun_elevation=20.0))),
+        ("wind", lambda: setattr(doc, "wind", doc.wind.replace(gust_strength=0.7))),
+        ("cameras", lambda: setattr(doc, "cameras", {**doc.cameras, "mine": spec})),
+        ("default_camera", lambda: setattr(doc, "default_camera", other)),
+        ("paths", lambda: setattr(doc, "paths", {**doc.paths, "loop": (spec, spec)})),
+        ("props", lambda: setattr(doc, "props", (*doc.props, rock))),
+        ("name", lambda: setattr(doc, "name", "renamed")),
+        ("description", lambda: setattr(doc, "description", "a field")),
+        ("terrain", lambda: doc.set_heights(doc.maps.layer("height") + 0.25, 4.0)),
+    ]
+
+
+@pytest.mark.parametrize("kind", [k for k, _ in _every_field_kind(SCENES["meadow"].document())])
+def test_a_copy_follows_every_field_through_one_relay(kind):
+    doc = SCENES["meadow"].document()
+    copy = _replica(doc)
+    names = []
+    doc.events.all.connect(lambda info: names.append(info.signal.name))
+    dict(_every_field_kind(doc))[kind]()
+    assert names and (kind in names or kind == "terrain")
+    assert copy.same_as(doc)
+    assert np.array_equal(copy.prop_boxes(), doc.prop_boxes())
+
+
+def test_every_field_has_its_event_and_the_copy_refuses_unknown_ones():
+    from core.document import FIELDS
+
+    doc = SCENES["patch-grid"].document()
+    for name in FIELDS:
+        assert name in list(doc.events)
+    with pytest.raises(ValueError, match="no document field"):
+        doc.apply("maps", ())

@@ -10,6 +10,7 @@ import numpy as np
 from core.stats import FrameStats
 from render import render_server
 from render.frame import FrameAborted
+from render.protocol import FrameRequest
 from render.render_server import DRAFT, RenderServer
 
 
@@ -54,8 +55,8 @@ def _server(monkeypatch) -> RenderServer:
     return server
 
 
-def _request(**extra) -> dict:
-    return {"kind": "view", "size": (80, 60), "camera": None, "state_time": 0.0, **extra}
+def _request(**extra) -> FrameRequest:
+    return FrameRequest(0, None, (80, 60), **extra)
 
 
 def test_a_draft_asked_for_is_drawn_whole_while_messages_wait(monkeypatch):

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, Qt
 
+from render.protocol import SetOverlay
 from tests.conftest import coverage
 from tests.widgets.conftest import grab, keep, wait_for_slices
 
@@ -374,7 +375,7 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
     qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)
     assert window.quality_action.isChecked() and vp.quality
     qtbot.wait(100)
-    vp.renderer.set_view_state("overlay", "brush", [])  # interrupts it: drawn again after
+    vp.renderer.set_view_state(SetOverlay("brush", []))  # interrupts it: drawn again after
     qtbot.waitUntil(lambda: vp.quality_figures is not None, timeout=120000)
     figures = vp.quality_figures
     assert 0 < figures["lod"]["flip_quarter"] < 1

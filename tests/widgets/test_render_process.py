@@ -144,3 +144,40 @@ def test_the_window_process_shows_full_frames_without_importing_gl(tmp_path):
     )  # fmt: skip
     assert r.returncode == 0, r.stderr[-2000:]
     assert r.stdout.strip().splitlines()[-1] == "GL:", r.stdout
+
+
+def test_every_document_change_reaches_both_render_processes(window, qtbot):
+    """Each kind of document field, changed in the window, is the same in the copy each render
+    process draws from; and after a height stroke under a rock, the rock stands on the new
+    ground in both."""
+    import json
+
+    from app.scenes import get_scene
+    from core.project_file import document_data
+    from tests.core.test_document import _every_field_kind
+
+    window.open_document(get_scene("meadow").document())
+    doc, vp = window.document, window.viewport
+
+    def plain(data) -> str:
+        return json.dumps(data, sort_keys=True)
+
+    def check(what: str) -> None:
+        for role in ("draft", "full"):
+            facts = vp.renderer_facts(role=role)
+            assert plain(facts["document"]) == plain(document_data(doc)), (what, role)
+            assert np.array_equal(facts["prop_boxes"], doc.prop_boxes()), (what, role)
+
+    for kind, change in _every_field_kind(doc):
+        change()
+        check(kind)
+    # a stroke of height under the first rock, then the terrain rebuilt (as after a stroke)
+    (x, z), scale = doc.props[0].position, doc.terrain_spec.height_scale
+    column, row = (np.array([x, z]) / [doc.terrain_spec.columns, doc.terrain_spec.rows] + 0.5) * (
+        doc.maps.size
+    )
+    before = doc.prop_boxes()["centre"][0, 1]
+    doc.maps.write("height", int(column) - 8, int(row) - 8, np.ones((16, 16, 1), np.float32))
+    doc.rebuild_terrain()
+    assert doc.prop_boxes()["centre"][0, 1] > before + 0.5 * scale
+    check("height stroke")
