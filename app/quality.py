@@ -20,7 +20,7 @@ import numpy as np
 
 from core.camera import Camera
 from core.document import Document
-from core.quality import Comparison, figures, heat_map, popping
+from core.quality import Comparison, popping
 
 BUDGET_S = 120.0  # longest an all-geometry reference frame may be expected to take
 TRIANGLES_PER_S = 5e6  # llvmpipe's blade throughput (DESIGN.md) when a frame draws no geometry
@@ -40,8 +40,8 @@ def shifted(camera: Camera, distance: float) -> Camera:
 
 
 class QualityRun:
-    """The renderers one `sward quality` run needs, on one context: LOD (shaded, and in the
-    technique colours for the regions) and all-geometry."""
+    """The renderer one `sward quality` run needs, on one context: the LOD frame, and through
+    render/comparison.py the same pipeline in the technique colours and as all-geometry."""
 
     def __init__(self, document: Document, size: tuple[int, int], budget_s: float) -> None:
         from render.context import standalone
@@ -51,19 +51,16 @@ class QualityRun:
         self.budget_s = budget_s
         self.ctx = standalone()
         self.lod = HeadlessRenderer(document, self.ctx)
-        self.geometry = HeadlessRenderer(document, self.ctx, mode="geometry")
         self.document = document
         self.blade_width = float(document.params(0).width_max)
         self._throughput: float | None = None  # triangles per second measured in LOD frames
 
     def set_time(self, seconds: float) -> None:
-        """The moment of the wind both frames draw."""
-        for renderer in (self.lod, self.geometry):
-            renderer.pipeline.time = seconds
+        """The moment of the wind the frames draw."""
+        self.lod.pipeline.time = seconds
 
     def release(self) -> None:
-        for renderer in (self.lod, self.geometry):
-            renderer.release()
+        self.lod.release()
         self.ctx.release()
 
     def lod_frame(self, camera: Camera):
@@ -73,12 +70,24 @@ class QualityRun:
             self._throughput = stats.triangles / (stats.t_g_ms / 1000.0)
         return image, stats
 
+    def geometry(self, camera: Camera, measure: bool = False):
+        """An all-geometry frame (image, statistics)."""
+        from core.view_mode import ViewMode
+        from render.comparison import drawn_as
+
+        with drawn_as(self.lod.pipeline, ViewMode.GEOMETRY):
+            return self.lod.render(camera, self.size, measure=measure)
+
     def reference_estimate_s(self, camera: Camera) -> tuple[int, float]:
-        triangles = self.geometry.pipeline.geometry_triangles(camera, self.size, "geometry")
+        triangles = self.lod.pipeline.geometry_triangles(camera, self.size, "geometry")
         return triangles, triangles / (self._throughput or TRIANGLES_PER_S)
 
-    def reference(self, camera: Camera):
-        return self.geometry.render(camera, self.size, measure=True)
+    def compare(self, camera: Camera, lod):
+        """The LOD frame (image, statistics) against all-geometry (render/comparison.py)."""
+        from render.comparison import lod_against_geometry
+
+        fbo = self.lod._target(self.size)
+        return lod_against_geometry(self.lod.pipeline, camera, fbo, self.size, lod=lod)
 
     def camera_figures(self, name: str, camera: Camera, out: Path | None) -> dict:
         lod_image, lod_stats = self.lod_frame(camera)
@@ -92,23 +101,12 @@ class QualityRun:
             )
             row["speedup_estimated"] = estimate * 1000.0 / max(lod_stats.t_a_ms, 1e-3)
             return row
-        reference, ref_stats = self.reference(camera)
-        floor_image, _ = self.geometry.render(
-            shifted(camera, self.blade_width), self.size, measure=False
-        )
-        self.lod.pipeline.view = "techniques"
-        try:
-            tech_image, _ = self.lod.render(camera, self.size, measure=False)
-        finally:
-            self.lod.pipeline.view = "shaded"
-        from render.grass_type import technique_colors
-
-        found, lod, regions = figures(reference, lod_image, tech_image, technique_colors())
+        compared = self.compare(camera, (lod_image, lod_stats))
+        reference, lod, regions = compared.reference, compared.comparison, compared.regions
+        floor_image, _ = self.geometry(shifted(camera, self.blade_width))
         floor = Comparison.of(reference, floor_image)
         row.update(
-            found,
-            geometry_ms=ref_stats.t_a_ms,
-            speedup=ref_stats.t_a_ms / max(lod_stats.t_a_ms, 1e-3),
+            compared.found,
             floor=floor.to_dict(),
             over_floor=lod.flip_quarter / max(floor.flip_quarter, 1e-9),
         )
@@ -125,8 +123,7 @@ class QualityRun:
             stem = out / name
             Image.fromarray(lod_image).save(f"{stem}-lod.png")
             Image.fromarray(reference).save(f"{stem}-geometry.png")
-            heat = heat_map(lod.quarter_map).repeat(4, axis=0).repeat(4, axis=1)
-            Image.fromarray(heat).save(f"{stem}-flip.png")
+            Image.fromarray(compared.heat_map()).save(f"{stem}-flip.png")
             row["heat_map"] = f"{stem}-flip.png"
         return row
 
@@ -138,10 +135,8 @@ class QualityRun:
         wind = document.wind
         document.wind = wind.replace(enabled=False)
         try:
-            reference, _ = self.geometry.render(camera, self.size, measure=False)
-            shifted_image, _ = self.geometry.render(
-                shifted(camera, self.blade_width), self.size, measure=False
-            )
+            reference, _ = self.geometry(camera)
+            shifted_image, _ = self.geometry(shifted(camera, self.blade_width))
         finally:
             document.wind = wind
         still = Comparison.of(reference, shifted_image)
@@ -169,7 +164,7 @@ class QualityRun:
                     "reference": f"not drawn: {triangles:,} blade triangles at a path frame, "
                     f"estimated {estimate:.3g} s (budget {self.budget_s:g} s)",
                 }
-            references.append(self.reference(camera)[0])
+            references.append(self.geometry(camera)[0])
         flips = [
             Comparison.of(r, x).flip_quarter for r, x in zip(references, lod_frames, strict=True)
         ]

@@ -120,7 +120,7 @@ def region_colours(lod: np.ndarray, reference: np.ndarray, regions: dict) -> dic
 
 
 class _Frames:
-    """The frames a case needs, from one LOD and one all-geometry renderer."""
+    """The frames a case needs, from one renderer (LOD, and all-geometry through it)."""
 
     def __init__(self, document: Document, size: tuple[int, int]) -> None:
         from app.quality import QualityRun
@@ -162,7 +162,7 @@ def case_figures(case: Case, size: tuple[int, int], wind: bool) -> tuple[dict, n
         triangles, estimate = frames.run.reference_estimate_s(camera)
         reference = None
         if estimate <= REFERENCE_BUDGET_S:
-            reference, _ = frames.run.reference(camera)
+            reference, _ = frames.run.geometry(camera)
             regions = technique_regions(shaded, techniques, by_level)
             row["region_colour"] = region_colours(shaded, reference, regions)
             row["stripes"] = {

@@ -31,6 +31,7 @@ from core.view_mode import ViewMode
 from render import context
 from render import protocol as msg
 from render.binding import DocumentBinding
+from render.comparison import lod_against_geometry
 from render.frame import FrameAborted, FramePipeline
 from render.mapped import MappedArray
 from render.process_start import DRAFT, FULL
@@ -161,37 +162,14 @@ class RenderServer:
         return self._targets[size]
 
     def _quality(self, camera, fbo, size: tuple[int, int], abort):
-        """The LOD frame, its technique colours and an all-geometry reference: the heat map of
+        """The frame against an all-geometry reference (render/comparison.py): the heat map of
         their difference (RGBA) and the figures."""
-        from core.quality import figures, heat_map
-        from render.grass_type import technique_colors
-
-        p = self.pipeline
-        stats = p.render(camera, fbo, size, True, False, abort)
-        lod = context.read_rgb(fbo, size, 3)
-        view, mode = p.view, p.mode
-        try:
-            p.view = "techniques"
-            p.render(camera, fbo, size, False, False, abort)
-            techniques = context.read_rgb(fbo, size, 3)
-            p.view = "shaded"
-            p.set_mode(ViewMode.GEOMETRY)
-            reference_stats = p.render(camera, fbo, size, True, False, abort)
-            reference = context.read_rgb(fbo, size, 3)
-        finally:
-            p.view = view
-            p.set_mode(mode)
-        found, lod_vs, _ = figures(reference, lod, techniques, technique_colors())
-        found.update(
-            lod_ms=stats.t_a_ms,
-            geometry_ms=reference_stats.t_a_ms,
-            speedup=reference_stats.t_a_ms / max(stats.t_a_ms, 1e-3),
-        )
-        heat = heat_map(lod_vs.quarter_map).repeat(4, axis=0).repeat(4, axis=1)
+        compared = lod_against_geometry(self.pipeline, camera, fbo, size, abort)
+        heat = compared.heat_map()
         image = np.zeros((size[1], size[0], 4), np.uint8)
         image[: heat.shape[0], : heat.shape[1], :3] = heat
         image[..., 3] = 255
-        return image, stats, found
+        return image, compared.lod_stats, compared.found
 
     def draw(self, request: msg.FrameRequest) -> None:
         self.pipeline.time = request.time  # the moment of the wind (viewport.py)
@@ -216,7 +194,7 @@ class RenderServer:
             if request.again and self.request is None:
                 self.request = request  # after the message, unless a newer frame is asked for
             return
-        stats.preview = draft
+        stats.draft = draft
         stats.state_time = request.state_time
         self._send_frame(request, context.read_rgb(fbo, (w, h), 4), stats)
         if draft and (self.pipeline.missing() or self.pipeline.stale_light_sums()):

@@ -1,31 +1,16 @@
 """The live viewport: shows the frames the render processes draw (render/render_client.py) and
-turns mouse and keys into camera moves and brush strokes. No GL on the window's thread: every
-change asks for a frame, the draft process answers first with a cheap one, the full-quality
-process follows, and the newest frame is painted.
+turns mouse and keys into camera moves and brush strokes. No GL on the window's thread: which
+frames are asked for and which are shown is render/frame_schedule.py's (the wind's moments, draft
+before full, the Quality view); the viewport gives it Qt's timers, the camera and the size, and
+paints what it shows.
 
 Left drag orbits, right or middle drag pans, the wheel zooms. F toggles fly mode, in which
 W A S D move and Q E sink and rise.
-
-While the document's wind blows, the view animates: each state asked for carries the moment of
-the wind (seconds of wind since it started blowing here), and the next moment is asked for as
-soon as the full-quality frame of the last one is on screen, or after ANIMATION_STEP_MS when
-that frame is slower. Where a full frame takes longer than ANIMATION_STEP_MS (a CPU renderer),
-the wind shows drafts, as the camera does while it moves, and the next moment is asked for as
-soon as the draft of the last one is on screen: the wind then moves as fast as drafts come,
-not once per ANIMATION_STEP_MS. With `sharp_wind` (View → Sharp wind frames) a new moment waits for the full
-frame of the last one and is drawn without a draft: fewer moments a second on a slow renderer,
-each at full quality. Switching the wind off holds the grass still, and so does the Quality
-view while it is on (its all-geometry reference takes seconds: the next moment would give it
-up).
-
-The Quality view: once a full-quality frame of the newest state is on screen, the full-quality
-process draws an all-geometry reference of the same camera in the background and answers with
-the difference as a heat map (shown over the frame) and its figures (`quality_ready`); any
-change gives it up, and it is asked for again when the view rests.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from time import monotonic
 from typing import ClassVar
 
@@ -36,6 +21,7 @@ from PySide6.QtWidgets import QWidget
 
 from core.camera import Camera
 from core.document import Document
+from core.frame_schedule import FrameSchedule
 from core.picking import ground_circle, ground_hit, pixel_ray, world_to_texel, zone_rings
 from core.stats import FrameStats
 from core.view_mode import ViewMode
@@ -51,12 +37,31 @@ ZONE_COLORS = {
 }
 BRUSH_COLOR = (1.0, 1.0, 1.0, 0.9)
 IMAGE_TIMEOUT_S = 600.0
-ANIMATION_STEP_MS = 250  # the longest wait for a full frame before the wind moves on
-SHARP_STEP_MS = 10_000  # with sharp wind frames: moves on only if a full frame never comes
+
+
+class _QtClock:
+    """The frame schedule's clock: monotonic time and Qt's single-shot timers."""
+
+    def __init__(self, parent: QWidget) -> None:
+        self.parent = parent
+
+    def now(self) -> float:
+        return monotonic()
+
+    def call_later(self, seconds: float, callback: Callable[[], None]) -> QTimer:
+        timer = QTimer(self.parent, singleShot=True, interval=int(seconds * 1000))
+        timer.timeout.connect(callback)
+        timer.timeout.connect(timer.deleteLater)
+        timer.start()
+        return timer
+
+    def cancel(self, handle: QTimer) -> None:
+        handle.stop()
+        handle.deleteLater()
 
 
 class GrassViewport(QWidget):
-    frame_rendered = Signal(object)  # FrameStats of each frame shown (drafts: preview=True)
+    frame_rendered = Signal(object)  # FrameStats of each frame shown (drafts: draft=True)
     camera_changed = Signal()
     status_changed = Signal(str)  # what the renderer is doing ("" when it is done)
     renderer_restarted = Signal(str)  # what happened to a render process that died
@@ -91,25 +96,20 @@ class GrassViewport(QWidget):
         self.show_zones = False  # LOD zone rings on the ground
         self._painting = False
         self._hover: tuple[float, float] | None = None  # world x, z under the cursor
-        # frames: `version` counts the states asked for; a frame shows the newest state seen
-        self.version = 0
-        self.shown = (0, True)  # (version, preview) of the frame on screen
         self._image: QImage | None = None
-        self._images: dict[int, Frame] = {}  # screenshots waited for, by token
-        self._token = 0  # screenshots and questions to the renderer
-        self._pending = False
-        self.quality = False  # the Quality view (set_quality)
-        self._quality: tuple[int, QImage, dict] | None = None  # version, heat map, figures
-        self._quality_asked = 0  # the version a quality frame was last asked for
-        # the wind's animation: the moment drawn, and the clock it follows while the wind blows
-        self.wind_time = 0.0
-        self._wind_clock: float | None = None  # monotonic() at wind_time 0; None: still
-        self._wind_step = QTimer(self, singleShot=True, interval=ANIMATION_STEP_MS)
-        self.sharp_wind = False  # each moment of the wind at full quality, no drafts
-        self._draft = False  # whether the frame asked for next needs a draft first
-        self._full_ms = 0.0  # how long the last full-quality frame took to draw
-        self._wind_step.timeout.connect(self._next_moment)
+        self._heat: QImage | None = None  # the Quality view's difference over the frame
         self.renderer = RenderClient(self._on_frame, self.status_changed.emit, self._on_restart)
+        self.schedule = FrameSchedule(
+            self.renderer,
+            lambda: (self.camera, self._size()),
+            _QtClock(self),
+            on_show=self._show,
+            on_quality=self._show_quality,
+            on_quality_asked=lambda: self.status_changed.emit(
+                "quality: drawing the all-geometry reference"
+            ),
+            before_request=self._zone_rings,
+        )
         self._notifiers: list[QSocketNotifier] = []
         self._watch()
         self.renderer.attach(document, self.request_frame)
@@ -117,6 +117,15 @@ class GrassViewport(QWidget):
         document.events.wind.connect(self._on_wind)
         self._on_wind(document.wind)
         self.request_frame()
+
+    # the schedule's state, read by the window and the tests
+    version = property(lambda self: self.schedule.version)
+    settling = property(lambda self: self.schedule.settling)
+    animating = property(lambda self: self.schedule.animating)
+    wind_time = property(lambda self: self.schedule.wind_time)
+    sharp_wind = property(lambda self: self.schedule.sharp_wind)
+    quality = property(lambda self: self.schedule.quality)
+    quality_figures = property(lambda self: self.schedule.quality_figures)
 
     def _watch(self) -> None:
         """Read each render process's messages when its pipe has some (no polling)."""
@@ -154,28 +163,12 @@ class GrassViewport(QWidget):
         self.renderer.set_view_state(msg.SetView(view))
         self.request_frame()
 
-    @property
-    def animating(self) -> bool:
-        """True while the wind blows and the view follows it."""
-        return self._wind_clock is not None
-
     def _on_wind(self, wind: Wind) -> None:
-        # the Quality view holds the wind at its moment: its reference takes seconds, and a
-        # frame of the next moment would give it up before it is drawn
-        if wind.enabled and not self.quality and self._wind_clock is None:
-            self._wind_clock = monotonic() - self.wind_time  # on from where it stopped
-        elif (not wind.enabled or self.quality) and self._wind_clock is not None:
-            self.wind_time = monotonic() - self._wind_clock
-            self._wind_clock = None
-            self._wind_step.stop()
-
-    def _next_moment(self) -> None:
-        if self.animating:
-            self.request_frame(draft=not self.sharp_wind)
+        self.schedule.set_wind(wind.enabled)
 
     def set_sharp_wind(self, on: bool) -> None:
         """While the wind blows: each moment at full quality (on) or drafts between (off)."""
-        self.sharp_wind = on
+        self.schedule.sharp_wind = on
 
     def set_camera(self, camera: Camera) -> None:
         self.camera = camera
@@ -190,29 +183,9 @@ class GrassViewport(QWidget):
 
     def set_quality(self, on: bool) -> None:
         """The Quality view: the difference against all-geometry over the frame, when at rest."""
-        self.quality = on
-        self._quality, self._quality_asked = None, 0
-        blew = self.animating
-        self._on_wind(self.document.wind)  # held while the Quality view is on
-        if self.animating and not blew:
-            self.request_frame()  # on again from the moment it was held at
-        self._ask_quality()
+        self._heat = None
+        self.schedule.set_quality(on)
         self.update()
-
-    @property
-    def quality_figures(self) -> dict | None:
-        """The Quality view's figures for the frame on screen (None until they are drawn)."""
-        if self._quality is None or self._quality[0] != self.shown[0]:
-            return None
-        return self._quality[2]
-
-    def _ask_quality(self) -> None:
-        if self.quality and not self.settling and self._quality_asked != self.version:
-            self._quality_asked = self.version
-            self.status_changed.emit("quality: drawing the all-geometry reference")
-            self.renderer.request(
-                self.version, self.camera, self._size(), purpose="quality", time=self.wind_time
-            )
 
     @property
     def max_image_size(self) -> int:
@@ -220,75 +193,41 @@ class GrassViewport(QWidget):
 
     # -- frames --------------------------------------------------------------------------------
     def request_frame(self, draft: bool = True) -> None:
-        """Something changed: ask for a frame of the new state (once per event-loop turn); a
-        draft comes first unless only the wind moved on and sharp wind frames are on."""
-        self.version += 1
-        self._draft = self._draft or draft
-        if not self._pending:
-            self._pending = True
-            QTimer.singleShot(0, self._send_request)
+        """Something changed: ask for a frame of the new state (render/frame_schedule.py)."""
+        self.schedule.changed(draft)
 
     def _size(self) -> tuple[int, int]:
         ratio = self.devicePixelRatio()
         return max(1, int(self.width() * ratio)), max(1, int(self.height() * ratio))
 
-    def _send_request(self) -> None:
-        self._pending = False
+    def _zone_rings(self) -> None:
         if self.show_zones:
             lod = self.document.lod(0).for_view(self._size()[1], self.camera.fov_y)
             lod = lod.with_blade_reach(self.document.wind.reach)
             rings = zone_rings(self.document.terrain, self.camera.eye, lod.levels)
             lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
             self.renderer.set_view_state(msg.SetOverlay("zones", lines))
-        if self._wind_clock is not None:
-            self.wind_time = monotonic() - self._wind_clock
-            # the next moment, unless the full frame comes first
-            self._wind_step.start(SHARP_STEP_MS if self.sharp_wind else ANIMATION_STEP_MS)
-        draft, self._draft = self._draft, False
-        self.renderer.request(
-            self.version, self.camera, self._size(), time=self.wind_time, draft=draft
-        )
 
     def _on_frame(self, frame: Frame) -> None:
-        if frame.purpose == "screenshot":
-            self._images[frame.version] = frame
-            return
-        if frame.purpose == "quality":
-            if self.quality and frame.version == self.version:
-                h, w = frame.image.shape[:2]
-                heat = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888)
-                self._quality = (frame.version, heat.copy(), frame.figures)
-                self.status_changed.emit("")
-                self.update()
-                self.quality_ready.emit(frame.figures)
-            return
-        key = (frame.version, frame.stats.preview)
-        if frame.version < self.shown[0] or (key[0] == self.shown[0] and key[1] > self.shown[1]):
-            return  # older than what is on screen, or a draft of a state shown in full
-        self.shown = key
+        self.schedule.arrived(frame)
+
+    def _show(self, frame: Frame) -> None:
         h, w = frame.image.shape[:2]
         self._image = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
         self.last_stats = frame.stats
         self.update()
         self.frame_rendered.emit(frame.stats)
-        if not frame.stats.preview:
-            self._full_ms = frame.stats.t_a_ms
-        # the full frame is on screen, or a draft where full frames are too slow to follow the
-        # wind: the next moment now
-        slow = not self.sharp_wind and self._full_ms > ANIMATION_STEP_MS
-        if self.animating and frame.version == self.version and (not frame.stats.preview or slow):
-            self._wind_step.stop()
-            QTimer.singleShot(0, self._next_moment)
-        self._ask_quality()
+
+    def _show_quality(self, frame: Frame) -> None:
+        h, w = frame.image.shape[:2]
+        self._heat = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
+        self.status_changed.emit("")
+        self.update()
+        self.quality_ready.emit(frame.figures)
 
     def _on_restart(self, role: str, why: str) -> None:
         self._watch()
         self.renderer_restarted.emit(f"the {role} renderer stopped ({why}); started a new one")
-
-    @property
-    def settling(self) -> bool:
-        """True until a full-quality frame of the newest state is on screen."""
-        return self.shown != (self.version, False)
 
     def frame_image(self) -> np.ndarray:
         """The frame on screen as (h, w, 3) uint8 (drafts at their own, smaller size)."""
@@ -305,17 +244,16 @@ class GrassViewport(QWidget):
         The window keeps handling events while it waits."""
         self.renderer.set_view_state(msg.SetOverlay("brush", []))
         self.renderer.set_view_state(msg.SetOverlay("zones", []))
-        self._token -= 1  # negative: never taken for a view's version
-        version = self._token
-        self.renderer.request(version, self.camera, size, purpose="screenshot", time=self.wind_time)
+        version = self.schedule.ask_screenshot(self.camera, size)
+        images = self.schedule.screenshots
         loop = QEventLoop()
-        timer = QTimer(interval=20, timeout=lambda: version in self._images and loop.quit())
+        timer = QTimer(interval=20, timeout=lambda: version in images and loop.quit())
         timer.start()
         QTimer.singleShot(int(IMAGE_TIMEOUT_S * 1000), loop.quit)
         loop.exec()
         timer.stop()
         self._update_outline()
-        frame = self._images.pop(version, None)
+        frame = images.pop(version, None)
         if frame is None:
             raise RuntimeError("the renderer did not draw the image in time")
         return np.ascontiguousarray(frame.image[..., :3])
@@ -323,8 +261,7 @@ class GrassViewport(QWidget):
     def renderer_facts(self, timeout_s: float = 60.0, role: str = "full") -> dict:
         """What a renderer holds (slice counts, terrain, light, patches, props, its copy of the
         document), once it has handled every change sent before this call."""
-        self._token -= 1
-        token = self._token
+        token = self.schedule.new_token()
         self.renderer.query(token, role)
         loop = QEventLoop()
         found: dict = {}
@@ -350,9 +287,9 @@ class GrassViewport(QWidget):
         else:
             painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform)
             painter.drawImage(self.rect(), self._image)
-            if self.quality and self.quality_figures is not None:
+            if self.quality and self.quality_figures is not None and self._heat is not None:
                 painter.setOpacity(0.7)
-                painter.drawImage(self.rect(), self._quality[1])
+                painter.drawImage(self.rect(), self._heat)
                 painter.setOpacity(1.0)
         painter.end()
 
@@ -490,8 +427,7 @@ class GrassViewport(QWidget):
 
     def close_renderer(self) -> None:
         """Stop the render processes (the window closes)."""
-        self._wind_step.stop()
-        self._wind_clock = None
+        self.schedule.stop()
         self.document.events.wind.disconnect(self._on_wind)
         for notifier in self._notifiers:
             notifier.setEnabled(False)
