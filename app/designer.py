@@ -301,7 +301,7 @@ class DesignerWindow(QMainWindow):
     def _on_frame(self, stats) -> None:
         """A frame arrived: the timings of full-quality frames go to the overlay and the
         Timings dock; a draft only says so in the status line."""
-        if not stats.preview:
+        if not stats.draft:
             self.lod_panel.show_counts(stats)
             self.overlay.add(stats)
             self.profile_panel.add(stats)

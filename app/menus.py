@@ -28,7 +28,18 @@ def _action(window, text: str, key, slot, checkable: bool = False) -> QAction:
 def build_menus(w) -> None:
     """Menus of the designer window `w`; the actions a test or a shortcut reaches are kept
     on the window (mode_actions, techniques_action, zones_action, timings_action,
-    quality_action, paint_action, recent_menu, camera_menu)."""
+    quality_action, wind_action, sharp_wind_action, reset_layout_action, paint_action,
+    recent_menu, camera_menu)."""
+    _file_menu(w)
+    _edit_menu(w)
+    view = w.menuBar().addMenu("&View")
+    _view_cameras_and_modes(w, view)
+    _view_toggles(w, view)
+    _view_docks(w, view)
+    _paint_menu(w)
+
+
+def _file_menu(w) -> None:
     file_menu = w.menuBar().addMenu("&File")
     file_menu.addAction(
         _action(w, "&Open project…", QKeySequence.StandardKey.Open, lambda: w.projects.open())
@@ -48,6 +59,8 @@ def build_menus(w) -> None:
     )
     w.fill_recent_menu()
 
+
+def _edit_menu(w) -> None:
     edit = w.menuBar().addMenu("&Edit")
     undo = w.undo_stack.createUndoAction(w, "&Undo")
     undo.setShortcuts(QKeySequence.StandardKey.Undo)
@@ -55,7 +68,8 @@ def build_menus(w) -> None:
     redo.setShortcuts(QKeySequence.StandardKey.Redo)  # every key the platform binds to it
     edit.addActions([undo, redo])
 
-    view = w.menuBar().addMenu("&View")
+
+def _view_cameras_and_modes(w, view) -> None:
     view.addAction(
         _action(w, "&Reset camera", "Home", lambda: w.viewport.set_camera(w.document.camera()))
     )
@@ -72,6 +86,9 @@ def build_menus(w) -> None:
         group.addAction(act)
         view.addAction(act)
         w.mode_actions[mode] = act
+
+
+def _view_toggles(w, view) -> None:
     w.techniques_action = _action(
         w,
         "&Technique colours",
@@ -109,6 +126,9 @@ def build_menus(w) -> None:
         "a second where full frames are slow"
     )
     view.addAction(w.sharp_wind_action)
+
+
+def _view_docks(w, view) -> None:
     view.addSeparator()
     docks = (
         w.patch_dock,
@@ -126,6 +146,8 @@ def build_menus(w) -> None:
     w.reset_layout_action.setToolTip("the docks and the window as the designer first opens them")
     view.addAction(w.reset_layout_action)
 
+
+def _paint_menu(w) -> None:
     paint = w.menuBar().addMenu("&Paint")
     w.paint_action = _action(w, "&Paint in the viewport", "B", w.set_painting, True)
     paint.addAction(w.paint_action)

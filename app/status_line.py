@@ -9,7 +9,7 @@ from core.stats import FrameStats
 def status_text(stats: FrameStats, busy: str = "", fly_mode: bool = False) -> str:
     """Blades, triangles, the cells of each representation and the frame's time (a draft's as
     a whole); `busy`: what a render process says it is doing."""
-    if stats.preview:  # a draft is timed as a whole only
+    if stats.draft:  # a draft is timed as a whole only
         timing = f"draft {stats.t_a_ms:.0f} ms, full quality follows"
     else:
         timing = (

@@ -31,7 +31,7 @@ def run() -> list[dict]:
 
     def frame(draft: bool = False) -> float:
         start = time.perf_counter()
-        renderer.render(camera, SIZE, measure=False, preview=draft)
+        renderer.render(camera, SIZE, measure=False, half_resolution=draft)
         return (time.perf_counter() - start) * 1000.0
 
     def sun(k: int) -> None:

@@ -109,7 +109,7 @@ def summarize(session: dict) -> list[dict]:
         )
     wind = session.get("wind") or {}
     rows.append({"name": "wind_frames_per_second", "fps": float(wind.get("fps", float("nan")))})
-    full_frames = [f["t_a_ms"] for f in session["frames"] if not f["preview"]]
+    full_frames = [f["t_a_ms"] for f in session["frames"] if not f["draft"]]
     rows.append(
         {
             "name": "frames",

@@ -93,7 +93,7 @@ class Probe(QObject):
             {
                 "shown_ms": now_ms(),
                 "state_ms": stats.state_time * 1000.0,
-                "preview": bool(stats.preview),
+                "draft": bool(stats.draft),
                 **{f"t_{part}_ms": getattr(stats, f"t_{part}_ms") for part in "aqugvimo"},
             }
         )
@@ -122,7 +122,7 @@ def measure(entry: dict, probe: Probe) -> bool:
     if effect is None:
         return False
     showing = [f for f in list(probe.frames) if f["state_ms"] >= effect]
-    full = [f["shown_ms"] for f in showing if not f["preview"]]
+    full = [f["shown_ms"] for f in showing if not f["draft"]]
     if not full:
         return False
     entry["effect_ms"] = effect - entry["sent_ms"]
@@ -287,7 +287,7 @@ class Driver(threading.Thread):
             "frames": len(shown),
             "seconds": (end - start) / 1000.0,
             "fps": len(shown) / ((end - start) / 1000.0),
-            "full": sum(not f["preview"] for f in shown),
+            "full": sum(not f["draft"] for f in shown),
         }
         xdo("key", "ctrl+shift+w")
         time.sleep(1.0)
@@ -368,12 +368,12 @@ def main() -> int:
     window.show()
     probe = Probe(app, window)
     start = time.monotonic()
-    while not any(not f["preview"] for f in probe.frames):
+    while not any(not f["draft"] for f in probe.frames):
         app.processEvents()
         time.sleep(0.005)
         if time.monotonic() - start > FIRST_FRAME_S:
             raise SystemExit("latency session: no full frame within the time limit")
-    startup_ms = next(f["shown_ms"] for f in probe.frames if not f["preview"]) - launched
+    startup_ms = next(f["shown_ms"] for f in probe.frames if not f["draft"]) - launched
     window.activateWindow()  # keys go to the window with the input focus
     focused = time.monotonic()
     while not window.isActiveWindow() and time.monotonic() - focused < 10.0:

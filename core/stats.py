@@ -27,7 +27,7 @@ class FrameStats:
     triangles: int = 0
     width: int = 0
     height: int = 0
-    preview: bool = False  # a cheap frame (half resolution, no MSAA) drawn while input goes on
+    draft: bool = False  # the quick frame that answers input (the draft process's)
     # time.monotonic() when the state the frame shows was taken (the designer's latency)
     state_time: float = 0.0
     # per grass type and LOD level drawn: (type index, representation, slices, instances)

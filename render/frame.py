@@ -38,7 +38,7 @@ from render.grass_type import GrassTypeRenderer
 from render.ground import GroundRenderer
 from render.image import ImageRenderer
 from render.overlay import OverlayRenderer
-from render.present import PREVIEW_SCALE, Presenter, release_fbo
+from render.present import HALF, Presenter, release_fbo
 from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.tiling import TilingNoise
@@ -91,7 +91,7 @@ class FramePipeline:
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
         self.present = Presenter(ctx)
-        self._abort: Callable[[], bool] | None = None  # half-resolution preview frames, scaled up
+        self._abort: Callable[[], bool] | None = None
 
     # -- the first grass type, as the designer and the tests reach it -------------------------
     @property
@@ -277,26 +277,27 @@ class FramePipeline:
         out: moderngl.Framebuffer,
         size: tuple[int, int],
         measure: bool = False,
-        preview: bool = False,
+        half_resolution: bool = False,
         abort: Callable[[], bool] | None = None,
         draft: bool | None = None,
     ) -> FrameStats:
         """Draw one frame into `out` (size w × h) and return its statistics.
 
-        `preview` draws at half the resolution without multisampling (no alpha-to-coverage,
-        harder blade edges) and scales the frame up: several times faster on llvmpipe.
+        `half_resolution` draws at half the width and height without multisampling (no
+        alpha-to-coverage, harder blade edges) and scales the frame up: several times faster on
+        llvmpipe.
         `abort` is asked before each pass; when it says yes the frame is dropped (FrameAborted):
         the render process stops a frame that newer input has made stale. `draft` (by default
-        as `preview`): the far representations may light a new patch with the light sums of the
+        as `half_resolution`): the far representations may light a new patch with the light sums of the
         one before an edit (render/facing.py; stale_light_sums says so).
         """
         self._abort = abort
         ctx = self.ctx
         w, h = size
-        stats = FrameStats(width=w, height=h, preview=preview)
+        stats = FrameStats(width=w, height=h)
         t0 = time.perf_counter()
-        if preview:
-            dw, dh = max(1, w // PREVIEW_SCALE), max(1, h // PREVIEW_SCALE)
+        if half_resolution:
+            dw, dh = max(1, w // HALF), max(1, h // HALF)
         else:
             dw, dh = w, h
         if self.mode == ViewMode.COMPARE:  # three columns, one representation each
@@ -309,10 +310,11 @@ class FramePipeline:
             views = [((0, 0, dw, dh), self.mode)]
         # The query first (thesis ch. 6, then ch. 5): what every view draws is selected before
         # this frame's GPU work, so the CPU's part does not wait behind it.
-        draft = preview if draft is None else draft
+        draft = half_resolution if draft is None else draft
+        stats.draft = draft
         queries = [self._query(camera, region, mode, stats, draft) for region, mode in views]
         t_clear = time.perf_counter()
-        fbo = self.present.target((dw, dh)) if preview else self._target(size, self.samples)
+        fbo = self.present.target((dw, dh)) if half_resolution else self._target(size, self.samples)
         fbo.use()
         sky = self.lighting.sky_color
         fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
@@ -322,7 +324,7 @@ class FramePipeline:
         for (region, _), query in zip(views, queries, strict=True):
             self._draw(region, query, stats, measure)
         t1 = time.perf_counter()
-        if preview:
+        if half_resolution:
             self.present.scale_up(fbo, out, size)
         else:
             self.present.resolve(fbo, out, self.samples)

@@ -48,13 +48,15 @@ class HeadlessRenderer:
         camera: Camera,
         size: tuple[int, int],
         measure: bool = True,
-        preview: bool = False,
+        half_resolution: bool = False,
         alpha: bool = False,
     ) -> tuple[np.ndarray, FrameStats]:
         """One frame: an (h, w, 3) uint8 image, top row first ((h, w, 4) with `alpha`), and its
-        statistics; `preview`: the viewport's half-resolution frame (render/frame.py)."""
+        statistics; `half_resolution`: drawn at half the width and height (render/frame.py)."""
         out = self._target(size)
-        stats = self.pipeline.render(camera, out, size, measure=measure, preview=preview)
+        stats = self.pipeline.render(
+            camera, out, size, measure=measure, half_resolution=half_resolution
+        )
         return context.read_rgb(out, size, 4 if alpha else 3), stats
 
     def release(self) -> None:

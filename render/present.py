@@ -1,5 +1,5 @@
 """Putting a frame into the caller's framebuffer, every pixel opaque (shaders/present.glsl):
-preview frames (half resolution, no MSAA) scaled up by one textured quad, full frames' samples
+half-resolution frames (no MSAA) scaled up by one textured quad, full frames' samples
 averaged."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import numpy as np
 from render.context import release_framebuffer
 from render.shaders import load_program
 
-PREVIEW_SCALE = 2  # preview frames are drawn at 1 / 2 of the width and height
+HALF = 2  # half-resolution frames are drawn at 1 / 2 of the width and height
 
 
 class Presenter:
@@ -31,7 +31,7 @@ class Presenter:
         return self._fbo
 
     def scale_up(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size) -> None:
-        """The preview frame `fbo` over the whole of `out`, linearly filtered."""
+        """The half-resolution frame `fbo` over the whole of `out`, linearly filtered."""
         self._draw(fbo, out, size, ())
 
     def resolve(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, samples: int) -> None:

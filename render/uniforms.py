@@ -36,7 +36,7 @@ class FrameUniforms:
     wind: Wind = field(default_factory=Wind)  # the wind over the terrain (core/wind.py)
     time: float = 0.0  # seconds: the moment of the wind drawn
     wind_view: bool = False  # the grass coloured by its lean (--view wind)
-    # a draft (render/frame.py preview): the light tables may still be of the patch before an
+    # a draft (render/frame.py draft): the light tables may still be of the patch before an
     # edit, rebuilt for the full frame that follows (render/facing.py)
     draft: bool = False
     # whether the ambient or the diffuse light map has been painted (DesignMapTextures

@@ -304,14 +304,9 @@ void main() {
     // Opacity per slice crossed. A slice holds what a ray across its slab meets at right
     // angles, and both families hold every blade: a ray travelling a unit of the patch across
     // meets |d.x| N slices of one and |d.z| N of the other, where it meets the blades of N
-    // slabs once. So each crossing counts 1 / (|d.x| + |d.z|) of a slab (the former
-    // 1 / |cos φ| per family counted a diagonal ray's blades twice), times CROSSING_GAIN:
-    // what the slices' texels lack against the blades at these distances, measured (with
-    // 1.0 the volume met the blades 10/255 too low near the eye in tests/render/
-    // test_far_field.py's height view; 1.5 gave the best sward quality figures of 1.0 … 2.0,
-    // docs/lod-quality.md).
-    const float CROSSING_GAIN = 1.0;
-    float crossing = CROSSING_GAIN * length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
+    // slabs once. So each crossing counts 1 / (|d.x| + |d.z|) of a slab (1 / |cos φ| per
+    // family would count a diagonal ray's blades twice).
+    float crossing = length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
     float depth_lambda = -1.0;
     // The depth is that of the point where the ray became half opaque, for the fragment's own
     // test against what was drawn before it (ground, blades, image-based grass).

@@ -5,7 +5,7 @@ from core.stats import FrameStats
 
 
 def test_a_draft_says_a_full_frame_follows_and_a_full_frame_gives_each_technique():
-    draft = FrameStats(t_a_ms=61.4, blades=1200, triangles=9600, c_g=3, c_v=4, c_i=5, preview=True)
+    draft = FrameStats(t_a_ms=61.4, blades=1200, triangles=9600, c_g=3, c_v=4, c_i=5, draft=True)
     full = FrameStats(t_a_ms=480.2, t_g_ms=45.0, t_v_ms=290.4, t_i_ms=80.0, c_g=3, c_v=4, c_i=5)
     text = status_text(draft)
     assert "draft 61 ms, full quality follows" in text and "1,200 blades" in text

@@ -106,7 +106,7 @@ def test_frames_drawn_between_the_steps_leave_the_slices_as_they_are(converter, 
     patch = generate_patch(PARAMS)
     steps = converter.steps(patch, 3, SIZE, top_size=32)
     while True:
-        renderer.render(camera, (64, 48), preview=True)  # a draft between two captures
+        renderer.render(camera, (64, 48), half_resolution=True)  # a draft between two captures
         try:
             next(steps)
         except StopIteration as done:

@@ -27,7 +27,7 @@ def test_a_blade_edits_draft_keeps_the_sums_and_its_full_frame_builds_them(headl
         )
     params = doc.grass_types[0].params
     doc.set_params(0, params.replace(length_min=params.length_min * 1.1))
-    renderer.render(camera, SIZE, preview=True)
+    renderer.render(camera, SIZE, half_resolution=True)
     assert built == []  # the draft drew with the sums it held
     assert renderer.pipeline.stale_light_sums()  # and says so: the draft process refines
     full, _ = renderer.render(camera, SIZE)
@@ -41,15 +41,15 @@ def test_the_draft_process_refreshes_the_sums_a_draft_lacked(headless):
     doc = get_scene("meadow").document()
     camera = doc.camera()
     renderer = headless(doc)
-    renderer.render(camera, SIZE, preview=True)
+    renderer.render(camera, SIZE, half_resolution=True)
     params = doc.grass_types[0].params
     doc.set_params(0, params.replace(length_min=params.length_min * 1.1))
-    renderer.render(camera, SIZE, preview=True)
+    renderer.render(camera, SIZE, half_resolution=True)
     assert renderer.pipeline.stale_light_sums()
     renderer.pipeline.refresh_light_sums()  # render/render_server.py refine_one
     assert not renderer.pipeline.stale_light_sums()
-    refined, _ = renderer.render(camera, SIZE, preview=True)
-    fresh, _ = headless(doc).render(camera, SIZE, preview=True)
+    refined, _ = renderer.render(camera, SIZE, half_resolution=True)
+    fresh, _ = headless(doc).render(camera, SIZE, half_resolution=True)
     assert np.abs(refined.astype(int) - fresh.astype(int)).max() <= 2
 
 

@@ -65,13 +65,13 @@ def test_taller_grass_covers_more_at_grazing_view(headless):
     assert coverage(tall) > coverage(short) + 0.05
 
 
-def test_preview_frame_shows_the_same_grass_without_msaa(headless):
+def test_a_half_resolution_frame_shows_the_same_grass_without_msaa(headless):
     doc = document()
     renderer = headless(doc, mode="geometry")
     camera = doc.camera("default")
     full, _ = renderer.render(camera, SIZE)
-    preview, _ = renderer.render(camera, SIZE, preview=True)
-    assert coverage(preview) == pytest.approx(coverage(full), abs=0.08)
+    half, _ = renderer.render(camera, SIZE, half_resolution=True)
+    assert coverage(half) == pytest.approx(coverage(full), abs=0.08)
 
 
 def test_volume_representation_agrees_with_geometry(headless):

@@ -32,7 +32,7 @@ class _Pipeline:
     def __init__(self) -> None:
         self.drawn = 0
 
-    def render(self, camera, fbo, size, measure, preview, abort, draft=False) -> FrameStats:
+    def render(self, camera, fbo, size, measure, half_resolution, abort, draft=False) -> FrameStats:
         if abort is not None and abort():
             raise FrameAborted
         self.drawn += 1

@@ -425,7 +425,7 @@ def test_the_wind_dock_animates_the_grass_undoably_and_is_saved(window, qtbot, t
     seen: dict[bool, list[tuple[float, np.ndarray]]] = {True: [], False: []}
 
     def record(stats):
-        seen[stats.preview].append((vp.wind_time, vp.frame_image()))
+        seen[stats.draft].append((vp.wind_time, vp.frame_image()))
 
     def two_moments():
         return any(len({t for t, _ in frames}) >= 2 for frames in seen.values())
@@ -468,7 +468,7 @@ def test_sharp_wind_frames_draw_each_moment_at_full_quality(window, qtbot):
     qtbot.keyClick(vp, Qt.Key.Key_H, shift_ctrl)
     assert window.sharp_wind_action.isChecked() and vp.sharp_wind
     shown: list[tuple[bool, float]] = []
-    vp.frame_rendered.connect(lambda stats: shown.append((stats.preview, vp.wind_time)))
+    vp.frame_rendered.connect(lambda stats: shown.append((stats.draft, vp.wind_time)))
     window.set_wind_blowing(True)
     # the switch itself is a change of the document: a draft may come first; after that the
     # moments are full frames only

@@ -29,7 +29,7 @@ def drag(qtbot, widget, points, modifier=Qt.KeyboardModifier.NoModifier):
         QTest.mouseMove(widget, p)
         qtbot.wait(10)
     QTest.mouseRelease(widget, Qt.MouseButton.LeftButton, modifier, points[-1])
-    # while the cursor moves frames are previews (no MSAA); compare full-quality frames
+    # while the cursor moves frames are drafts (no MSAA); compare full-quality frames
     if hasattr(widget, "settling"):
         qtbot.waitUntil(lambda: not widget.settling, timeout=60000)
 
@@ -142,7 +142,7 @@ def test_editing_a_lod_end_changes_the_counts_in_the_overlay(window, qtbot):
     assert window.overlay.isVisible()
     wait_for_slices(window, qtbot)
     before = vp.last_stats
-    assert before.c_v > 0 and not before.preview
+    assert before.c_v > 0 and not before.draft
     panel = window.lod_panel
     panel.end_box(0).setValue(5.5)  # geometry to 5.5 instead of 3.5 + 0.75
     assert window.document.lod(0).levels[0].end == 5.5
@@ -170,7 +170,7 @@ def test_distances_set_for_a_smaller_view_draw_more_geometry_and_undo(window, qt
     assert window.document.lod(0).view_height == 120
     wait_for_slices(window, qtbot)
     after = vp.last_stats
-    assert after.c_g > before.c_g and not after.preview
+    assert after.c_g > before.c_g and not after.draft
     window.undo_stack.undo()
     assert window.document.lod(0).view_height is None
     assert box.text() == "world units"

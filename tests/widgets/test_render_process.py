@@ -56,7 +56,7 @@ def test_a_killed_draft_process_comes_back_too(window, qtbot):
     qtbot.waitUntil(lambda: vp.renderer.processes["draft"].max_image_size > 0, timeout=30000)
     qtbot.wait(2000)
     drafts = []
-    vp.frame_rendered.connect(lambda stats: stats.preview and drafts.append(stats))
+    vp.frame_rendered.connect(lambda stats: stats.draft and drafts.append(stats))
     vp.camera.orbit(15.0, 0.0)
     vp.request_frame()
     qtbot.waitUntil(lambda: bool(drafts), timeout=20000)
@@ -121,7 +121,7 @@ from app.scenes import get_scene
 window = DesignerWindow(get_scene("patch-grid").document())
 window.show()
 start = time.monotonic()
-while window.viewport.last_stats.preview or window.viewport.last_stats.t_a_ms <= 0.0:
+while window.viewport.last_stats.draft or window.viewport.last_stats.t_a_ms <= 0.0:
     app.processEvents()
     time.sleep(0.01)
     if time.monotonic() - start > 120:
