@@ -78,9 +78,8 @@ class Scene:
         )
 
     def recoloured(self, root: tuple, tip: tuple) -> Scene:
-        """Every grass type's blades in one ramp from `root` to `tip`, without variation: the
-        diagnostic views of scripts/representation_bands.py and the tests that compare
-        representations by light or coverage alone."""
+        """Every grass type's blades in one ramp from `root` to `tip`, without variation: for
+        the tests that compare representations by light or coverage alone."""
 
         def ramp(params: PatchParams) -> PatchParams:
             return params.replace(root_color=root, tip_color=tip, blade_color_variation=0.0)

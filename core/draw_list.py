@@ -75,8 +75,7 @@ def back_to_front(cells: np.ndarray, eye) -> np.ndarray:
     """Volume cells ordered farthest first (by their centres' distance from the eye in xz).
     A volume fragment blends its partly covered grass over what is drawn already, and writes
     the depth of where its ray became opaque, or, faint, of how far it got: a cuboid behind
-    drawn after it failed the depth test there and let the soil show through (the cracks at
-    the meadow default camera, scripts/ground_holes.py)."""
+    drawn after it failed the depth test there and let the soil show through."""
     if cells.size < 2:
         return cells
     centre = cells["origin"] + 0.5 * cells["size"]

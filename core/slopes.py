@@ -21,9 +21,8 @@ from core.light_moments import LightMoments, powers
 # sheared by the ground under each sample (eqs. 6.16–6.18): every part keeps its height over
 # the ground below it, as if the blades lay on the slope. Seen along a slope that rises away
 # from the eye, the upright blades show their downhill parts, whose eye-facing sides turn down
-# and away from the light: on a 14° ramp seen at 5° the blades' diffuse factor is 0.39, the
-# sheared slices' 0.44; slope_moments' model of each gives 0.395 and 0.450 (scripts/
-# facing_check.py --height-scale 8 --elevations 5 --azimuths 0 --predict; flat ground 0.44).
+# and away from the light: the upright blades are darker there than the sheared slices, and
+# slope_moments models each (tests/render/test_far_field.py checks the volume against them).
 SLOPES = 9  # ratio-table layers: the view's elevation over the ground minus over the horizon
 SLOPE_SPAN = np.radians(30.0)  # the outer layers' difference; layer t in -1 … 1 is SPAN · t|t|
 RATIO_LIMITS = (0.5, 2.0)  # where a view grazes the ground a few blade tips decide the ratio
@@ -31,9 +30,7 @@ GRAZING = np.radians(1.0)  # the least elevation over the ground a view is count
 MAX_RISE = 1.0  # ground steeper than 45° along the view counts as 45°
 # The ground may also rise across the view (a hillside seen obliquely): the upright blades' parts
 # that lean across it then stand higher or lower over the ground beside them, and which of them
-# show depends on it too. Seen 39° off a 14° ramp's fall line with the sun 84° to the side, the
-# blades' diffuse factor is 0.313 (0.320 flat); the model with the rise along the view alone
-# gave 0.299, with the rise across it as well 0.315 (scripts/facing_check.py --azimuths 321).
+# show depends on it too: the tables take the rise across the view as well as along it.
 ACROSS = 7  # ratio-table blocks: the ground's rise across the view, per unit of run
 ACROSS_SPAN = 0.6  # the outer blocks' rise; block t in -1 … 1 is SPAN · t|t| (to the right: +)
 

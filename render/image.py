@@ -22,9 +22,8 @@ from render.slices import SliceTextures, spread_levels
 from render.uniforms import FrameUniforms
 
 # AO_blade (eq. 6.11) is that of the heights a view meets of the blades (core/canopy.py
-# Canopy.shade_met); taken at fixed heights (0.7 of the grass from above, its top eighth towards
-# the horizon) it lit the DEM's far hills 0.81 where the blades show 0.63 of the ambient light
-# (scripts/region_views.py).
+# Canopy.shade_met), not of fixed heights: a view from low over the grass meets its darker lower
+# parts too.
 
 
 class _Batch(InstancedRenderer):

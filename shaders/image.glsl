@@ -73,9 +73,7 @@ void main() {
     // the ray over the grass layer: upright blades on ground that rises towards the eye are
     // crossed over a shorter run than on flat ground, and a ray descending at tan e over a
     // rise of gradient g along it meets the ground after h / (tan e + g), so tan θ = tan e + g
-    // = (u · n) / (n_y |u_xz|), n the ground's normal (from the height map's slope here); the
-    // smaller of the elevations over the ground and over the horizon, taken before, covered
-    // the DEM's hillsides that face the eye 10 % more than the blades: scripts/region_views.py.
+    // = (u · n) / (n_y |u_xz|), n the ground's normal (from the height map's slope here).
     vec2 texel = 1.0 / vec2(textureSize(u_design, 0).xy);
     vec2 gradient = vec2(
         ground_height(v_design + vec2(texel.x, 0.0)) - ground_height(v_design - vec2(texel.x, 0.0)),

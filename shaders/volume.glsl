@@ -216,77 +216,342 @@ vec4 horizontal(vec3 g, vec2 shift, float lod, float facing, out vec2 ao_l, out 
     return c;
 }
 
-void main() {
-    vec3 base = vec3(v_origin.x, v_ground.x, v_origin.y);  // the cuboid's corner in the world
-    vec3 eye = u_eye - base;
-    float band_top = min(u_band.y, u_height);
-    float top = band_top + v_ground.y;  // the cuboid's (vertex stage)
-    vec3 d = normalize(v_patch - eye);                        // eq. 5.5 (no rotation yet)
-    vec3 d_dx = dFdx(d), d_dy = dFdy(d);  // how the ray turns across the pixel
-    // eq. 5.4: the ray starts where it enters the level cuboid: where the cuboid follows a
-    // slope (v_follows), the one drawn lies inside the level one where the grass is and may
-    // reach out of it above the grass
-    vec3 e = v_patch;
-    if (v_follows > 0.5) {
-        vec3 inv = 1.0 / vec3(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.y) < 1e-6 ? 1e-6 : d.y,
-                              abs(d.z) < 1e-6 ? 1e-6 : d.z);
-        vec3 tmin = min((vec3(0.0) - eye) * inv, (vec3(v_size.x, top, v_size.y) - eye) * inv);
-        e = eye + max(max(max(tmin.x, tmin.y), tmin.z), 0.0) * d;
-    }
-    float entry = distance(eye, e);
-    // On uneven ground the extruded cuboid holds empty space above the grass: march the ray
-    // over the height map in a few coarse steps and start the slice stepping just before it
-    // reaches the grass layer, or a tall cuboid would use up the steps in empty air.
-    if (v_ground.y > 0.05 * u_height) {
-        vec3 inv = 1.0 / vec3(abs(d.x) < 1e-6 ? 1e-6 : d.x, d.y, abs(d.z) < 1e-6 ? 1e-6 : d.z);
-        vec3 t0 = (vec3(0.0) - e) * inv;
-        vec3 t1 = (vec3(v_size.x, top, v_size.y) - e) * inv;
-        vec3 tmax = max(t0, t1);
-        float leave = max(min(min(tmax.x, tmax.y), tmax.z), 0.0);
-        float start = 0.0, below = -1.0;
-        for (int k = 1; k <= u_skip_steps; ++k) {
-            float lam = leave * float(k) / float(u_skip_steps);
-            vec3 p = e + lam * d;
-            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + band_top) {
-                below = lam;
-                break;
-            }
-            start = lam;
+// The ray of this fragment through its cuboid, in the cuboid's frame (its corner at the origin)
+struct Ray {
+    vec3 eye;
+    vec3 d;           // eq. 5.5 (no rotation yet)
+    vec3 e;           // where the slice stepping starts
+    float top;        // the cuboid's top
+    float band_top;   // the top of this pass's heights
+    float lod;        // the mip level read
+    float crossing;   // the weight of one crossing (below)
+    float exit;       // where the ray leaves its cuboid (by a wall or the top)
+};
+
+// the ground's height under a point of the cuboid, over the cuboid's lowest ground
+float ground_under(vec2 xz) {
+    return ground_density(design_uv(v_config, xz)).x - v_ground.x;
+}
+
+// eq. 5.4: the ray starts where it enters the level cuboid: where the cuboid follows a slope
+// (v_follows), the one drawn lies inside the level one where the grass is and may reach out
+// of it above the grass
+vec3 enter_cuboid(vec3 eye, vec3 d, float top) {
+    if (v_follows <= 0.5) return v_patch;
+    vec3 inv = 1.0 / vec3(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.y) < 1e-6 ? 1e-6 : d.y,
+                          abs(d.z) < 1e-6 ? 1e-6 : d.z);
+    vec3 tmin = min((vec3(0.0) - eye) * inv, (vec3(v_size.x, top, v_size.y) - eye) * inv);
+    return eye + max(max(max(tmin.x, tmin.y), tmin.z), 0.0) * d;
+}
+
+// On uneven ground the extruded cuboid holds empty space above the grass: march the ray over
+// the height map in a few coarse steps and start the slice stepping just before it reaches
+// the grass layer, or a tall cuboid would use up the steps in empty air. Then halve the step
+// between the last point above the grass and the first in it: a start up to a coarse step
+// short of the grass would spend the slice steps in air in bands that follow the ground's
+// contours.
+vec3 skip_air(vec3 e, vec3 d, float top, float band_top) {
+    if (v_ground.y <= 0.05 * u_height) return e;
+    vec3 inv = 1.0 / vec3(abs(d.x) < 1e-6 ? 1e-6 : d.x, d.y, abs(d.z) < 1e-6 ? 1e-6 : d.z);
+    vec3 t0 = (vec3(0.0) - e) * inv;
+    vec3 t1 = (vec3(v_size.x, top, v_size.y) - e) * inv;
+    vec3 tmax = max(t0, t1);
+    float leave = max(min(min(tmax.x, tmax.y), tmax.z), 0.0);
+    float start = 0.0, below = -1.0;
+    for (int k = 1; k <= u_skip_steps; ++k) {
+        float lam = leave * float(k) / float(u_skip_steps);
+        vec3 p = e + lam * d;
+        if (p.y < ground_under(p.xz) + band_top) {
+            below = lam;
+            break;
         }
-        // then halve the step between the last point above the grass and the first in it: a
-        // start up to a coarse step short of the grass left the ray's slice steps used up in
-        // empty air in bands that follow the ground's contours (stripes on hillsides)
-        for (int k = 0; k < 5 && below > 0.0; ++k) {
-            float lam = 0.5 * (start + below);
-            vec3 p = e + lam * d;
-            if (p.y < ground_density(design_uv(v_config, p.xz)).x - v_ground.x + band_top) below = lam;
-            else start = lam;
-        }
-        e += start * d;
+        start = lam;
     }
+    for (int k = 0; k < 5 && below > 0.0; ++k) {
+        float lam = 0.5 * (start + below);
+        vec3 p = e + lam * d;
+        if (p.y < ground_under(p.xz) + band_top) below = lam;
+        else start = lam;
+    }
+    return e + start * d;
+}
+
+// Where the ray meets the horizontal slice (1e30: never, if it starts below or rises, or if
+// there is none). On uneven ground the layer follows the ground: the ray's height over it,
+// h(λ), is positive where the ray enters, and the layer lies at its first zero. Rising ground
+// meets the layer before the flat plane at the entry's ground would: a march of a few steps
+// towards that plane looks for a point below; falling ground meets it beyond: steps to where
+// the plane would be at the ground reached; once a point lies below, regula falsi between it
+// and the last point above. A layer flat at the entry's ground would hover over downhill
+// ground and lie under uphill ground; a search from the flat plane alone would jump past hill
+// crests. `descent`: how fast the ray's height over the ground falls along it, by the
+// ground's slope where it enters (a ray rising up a hill that rises faster falls into the
+// grass like one falling onto flat ground).
+float floor_crossing(vec3 e, vec3 d, float descent) {
+    float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
+    if (!(HAS_FLOOR && u_floor >= 0.0 && descent < -1e-4 && e.y > floor_y)) return 1e30;
+    float floor_lambda = (floor_y - e.y) / descent;
+    float a = 0.0, ha = e.y - floor_y, b = floor_lambda, hb = -1.0;
+    bool below = false;
+    for (int k = 0; k < 5; ++k) {
+        float x = below ? a + (b - a) * ha / (ha - hb)
+                : (k < 2 ? floor_lambda * float(k + 1) / 2.0 : a - ha / descent);
+        vec3 q = e + x * d;
+        float hx = q.y - (u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x);
+        if (hx > 0.0) {
+            a = x;
+            ha = hx;
+        } else {
+            b = x;
+            hb = hx;
+            below = true;
+        }
+    }
+    return below ? a + (b - a) * ha / (ha - hb) : a - ha / descent;
+}
+
+// The horizontal slice where the ray crosses it, shaded once before the slice stepping and
+// composited when the ray reaches it: inside the loop SIMD lanes meet it at different steps,
+// and its fetches and shading would run once for every step at which any lane met it.
+struct Floor {
+    float lambda;    // where along the ray (1e30: nowhere)
+    vec3 at;
+    vec4 color;      // premultiplied by nothing: colour and alpha
+    vec2 ao_l;       // AO and diffuse factor
+    float keep;      // the share of its blades kept (0: outside the cuboid or the band)
+};
+
+Floor floor_sample(Ray r, float floor_lambda, vec3 ground_up, float facing, WindShear shear) {
+    Floor f = Floor(floor_lambda, r.e + floor_lambda * r.d, vec4(0.0), vec2(0.0), 0.0);
+    if (floor_lambda >= 1e29) return f;
+    if (!(all(greaterThanEqual(f.at.xz, vec2(0.0))) && all(lessThanEqual(f.at.xz, v_size))))
+        return f;
+    f.color = horizontal(f.at, wind_unbend(shear, u_floor).yz, r.lod, facing, f.ao_l, f.keep);
+    // in this pass's band of heights (u_band); on sloping ground the ray meets their area from
+    // above over the vertical part of its run through the layer, n_y u_y / (u · n) of the top
+    // view's depth (as image.glsl)
+    bool in_band = u_floor >= u_band.x && u_floor < min(u_band.y, u_height + 1.0);
+    float top_run = ground_up.y * max(-r.d.y, 0.0) / max(dot(-r.d, ground_up), 1e-3);
+    f.color.a = in_band ? 1.0 - pow(1.0 - min(f.color.a, 0.999), top_run) : 0.0;
+    if (!in_band) f.keep = 0.0;
+    // where grass of a type beneath grows, its volume holds what the ray meets below
+    f.color.a *= 1.0 - clamp(dot(textureLod(u_design, vec3(design_uv(v_config, f.at.xz), 0.0),
+                                            0.0), u_under), 0.0, 1.0);
+    return f;
+}
+
+// what the stepping found besides the gathered sums
+const float DEPTH_ALPHA = 0.5;  // the depth written: where the ray became half opaque
+float g_depth_lambda = -1.0;
+float g_reached = 0.0;  // the farthest point of the ray known to lie above the ground
+float g_counted = 0.0;  // how much of the ray's run through the grass its crossings counted
+
+void gather_floor(inout Floor f) {
+    gather(f.color, f.ao_l.x, f.ao_l.y, f.at.xz);
+    if (g_depth_lambda < 0.0 && g_alpha > DEPTH_ALPHA) g_depth_lambda = f.lambda;
+    f.lambda = 1e30;
+}
+
+// One crossing of a vertical slice at `h` (its plane `plane` across x or z): the slice's
+// sample over the part `inside` of a slab it stands for, gathered at y over the ground.
+void cross_slice(Ray r, vec3 h, float y, float gd_density, bool hit_x, float plane,
+                 float inside, float sample_lambda, WindShear shear, float rows,
+                 float side_spread, float facing, float slope_l, inout vec2 mirror_cell,
+                 inout vec2 s) {
+    float slice = mod(floor(plane * u_slices), u_slices);
+    // the wind: read where the bent blades here stood at rest, moved along the slice
+    vec3 rest = wind_unbend(shear, y);  // (y, 0, 0) in still air
+    vec2 at = hit_x ? vec2(h.x, h.z - rest.z) : vec2(h.x - rest.y, h.z);
+    // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end (the bits of the
+    // cell that point lies in: a macro-cell's, or the neighbour's a ray ran on into; a blade
+    // the wind bends over a cell's edge keeps its own cell's bits)
+    vec2 cell = floor(at);
+    if (cell != mirror_cell) {  // a ray crosses N slices a cell: one fetch per cell
+        mirror_cell = cell;
+        s = cell_mirror(v_origin + cell, v_mirror);
+    }
+    if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
+    float u = fract((hit_x ? s.y * at.y : s.x * at.x));
+    float v = slice_v(rest.x / u_height, rows, r.lod);
+    vec2 uv = atlas_uv(u, v, hit_x ? slice : u_slices + slice);
+    vec4 c = textureLod(u_side_color, uv, r.lod);
+    vec4 data = textureLod(u_side_data, uv, r.lod);
+    float density = u_density * v_density * gd_density;
+    // The share of the texel's blades kept (density map, LOD transition) thins them as a layer
+    // of random blades thins: transmittance (1 - a)^share, like the crossing's weight. Scaling
+    // the alpha by the share would let half the blades cover half as much where they cover
+    // more than half of it: the ground would show at the hand-over from the blades.
+    float share = lod_share(data.a, side_spread, density,
+                            lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
+    // A reduced level's texel averages alpha over rows whose depths differ (the lower rows all
+    // but opaque, the upper ones nearly empty); a ray descending through the grass crosses the
+    // slices at all those heights and meets the mean of their depths, not the depth of their
+    // mean alpha. The texel's depth is scaled by its row's at the base level over its row's at
+    // the level read: the row keeps the base level's depth at this height, the texel where
+    // along the slice the blades stand.
+    float levels = float(textureSize(u_side_depths, 0).y);
+    float row = textureLod(u_side_depths, vec2(v, (r.lod + 0.5) / levels), 0.0).r;
+    float base = textureLod(u_side_depths, vec2(v, 0.5 / levels), 0.0).r;
+    float depth = -log(1.0 - clamp(c.a, 0.0, 0.999)) * (base + 1e-3) / (row + 1e-3);
+    c.a = 1.0 - exp(-depth * r.crossing * share * inside);
+    if (c.a <= 0.003) return;
+    vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
+    if (dot(n, -r.d) < 0.0) n = -n;
+    // A texel's normal is the mean of its blades' (render/slices.py): of one blade near the
+    // eye, of many far away, where the mean is short and would light them as one dull face.
+    // Lit by its own direction, blended towards the blades' mean diffuse factor seen from the
+    // ray (the facing table) as far as the averaging shortened it, from unit length to that of
+    // the family's mean normal.
+    float len = length(n);
+    float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
+    // under the wind the texel's normal turns with the blades' curve here (wind_axis)
+    if (WIND_ON) n = turn(n, vec3(0.0, 1.0, 0.0), wind_axis(shear, y));
+    float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
+    gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
+    if (g_depth_lambda < 0.0 && g_alpha > DEPTH_ALPHA) g_depth_lambda = sample_lambda;
+}
+
+// eqs. 5.7-5.21: step from slice to slice of both families, gathering front to back, the
+// horizontal slice when the ray reaches it, until the ray is opaque or leaves its cuboid.
+// Each crossing stands for the blades of the ray's path around it (a slice holds the blades
+// between it and its neighbours, thesis 4.2.1): the crossings of both families cut the ray
+// into stretches, each from half the way back to the crossing before (of either family) to
+// half the way on to the next, the first from where the ray starts and the last to where it
+// leaves what it may cross; each crossing counts the part of its stretch inside the grass
+// layer (0 … height over the ground), in slabs: the ray's mean distance between crossings,
+// p_inum / (|d.x| + |d.z|), is a slab's worth. The stretches tile the ray, so a ray through
+// the layer in less than a slab (a slope facing the eye, a steep view) meets the share of
+// blades its path holds wherever the planes fall, and a ray that meets the grass only near
+// where it enters its cuboid counts all of it.
+void march_slices(Ray r, inout Floor f, WindShear shear, float facing, float slope_l) {
+    vec3 e = r.e, d = r.d;
     float p_inum = 1.0 / u_slices;                            // eq. 5.7
     float p_inum2 = 0.5 * p_inum;                             // eq. 5.8
     vec2 pm = floor((e.xz - p_inum2) * u_slices) * p_inum + p_inum2;  // eq. 5.9
     vec2 pd = sign(d.xz);                                     // eq. 5.10
     vec2 pi = pm + (pd + abs(pd)) * p_inum2;                  // eqs. 5.11-5.12
     vec2 safe_d = vec2(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.z) < 1e-6 ? 1e-6 : d.z);
-    float lod = max(log2(entry * u_lod_scale), 0.0);
+    float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
+    float side_spread = level_value(u_side_spread, r.lod);
+    vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
+    float slab = p_inum / max(abs(d.x) + abs(d.z), 0.25);
+    vec2 spacing = p_inum / abs(safe_d);  // the ray between two planes of either family
+    float prev_lambda = 0.0;
+    float rate_lambda = 0.0;
+    float prev_y = e.y - ground_under(e.xz);
+    for (int i = 0; i < u_max_steps; ++i) {
+        vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
+        bool hit_x = w.x < w.y;
+        float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
+        float next_lambda = hit_x ? min(w.x + spacing.x, w.y) : min(w.x, w.y + spacing.y);
+        if (f.lambda < lambda) {  // the horizontal slice lies before the next vertical one
+            gather_floor(f);
+            if (g_alpha > u_opaque) break;
+        }
+        vec3 h = e + lambda * d;                              // eq. 5.18
+        // The ray stops at its cuboid's walls: the cuboid beyond draws the rest of the grass
+        // along it, blended over or under this fragment (render/frame.py).
+        if (h.y < 0.0 || h.y > r.top || any(lessThan(h.xz, vec2(0.0)))
+            || any(greaterThan(h.xz, v_size))) break;
+        vec2 gd = ground_density(design_uv(v_config, h.xz));
+        // eqs. 6.16-6.18: shift the lookup by the ground under the hit
+        float y = h.y - (gd.x - v_ground.x);
+        // the heights over the ground the crossing's stretch spans (the ground taken as
+        // straight between this crossing and the previous one), from where the ray entered
+        float rate = lambda - rate_lambda > 1e-4 ? (y - prev_y) / (lambda - rate_lambda) : d.y;
+        float from = i == 0 ? 0.0 : 0.5 * (prev_lambda + lambda);
+        float to = next_lambda >= r.exit ? r.exit : 0.5 * (lambda + next_lambda);
+        float y_from = y - rate * (lambda - from), y_to = y + rate * (to - lambda);
+        float lo = min(y_from, y_to), hi = max(y_from, y_to);
+        prev_lambda = lambda;
+        rate_lambda = lambda;
+        prev_y = y;
+        // under the ground the ray is hidden by the ground drawn before: nothing after counts
+        // (nor, for a pass of a band of heights, under that band: u_band)
+        if (hi < u_band.x) break;
+        if (y >= 0.0) g_reached = lambda;
+        if (lo <= r.band_top) {
+            float in_lo = max(lo, u_band.x), in_hi = min(hi, r.band_top);
+            float share_in = hi - lo > 1e-5 ? max(in_hi - in_lo, 0.0) / (hi - lo) : 1.0;
+            g_counted += share_in * (to - from);
+            // the stretch's blades are read at the middle of its heights inside the layer,
+            // and stand there on the ray: the crossing point itself may lie under the ground
+            // (a ray rising up a slope meets the ground within a stretch), and a depth written
+            // there would hide the fragment behind the ground
+            float mid = 0.5 * (in_lo + in_hi);
+            float sample_lambda = abs(rate) > 1e-6
+                ? clamp(lambda + (mid - y) / rate, from, to) : lambda;
+            cross_slice(r, h, mid, gd.y, hit_x, hit_x ? pi.x : pi.y,
+                        share_in * (to - from) / slab, sample_lambda, shear, rows,
+                        side_spread, facing, slope_l, mirror_cell, s);
+            if (g_alpha > u_opaque) break;
+        }
+        if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
+    }
+}
+
+// What the ray's crossings did not count of its run through the grass, behind all it met:
+// the run from where its height over the ground (falling evenly from `entry_h` to the floor)
+// reaches the top of the pass's heights to where it reaches the ground or leaves the cuboid;
+// of that, the part in this cuboid (the cuboid beyond a wall the ray leaves by counts the
+// rest).
+void gather_missed(Ray r, Floor f, float entry_h, float floor_tan, vec3 floor_met) {
+    float fall = (entry_h - u_floor) / max(distance(r.e, f.at), 1e-6);
+    float start = entry_h > r.band_top ? (entry_h - r.band_top) / max(fall, 1e-6) : 0.0;
+    float full = entry_h / max(fall, 1e-6) - start;
+    float run = min(full + start, r.exit) - start;
+    float missed = full > 1e-6 ? clamp((run - g_counted) / full, 0.0, 1.0) : 0.0;
+    gather(missed_blades(missed, f.keep, floor_tan, floor_met), f.ao_l.x, f.ao_l.y, f.at.xz);
+}
+
+// The gathered sums shaded once, at their mean position; the depth of the point where the ray
+// became half opaque, or else of the farthest point it reached above the ground (its grass
+// lies before it, the ground beyond).
+void shade_and_write(Ray r, vec3 base, vec3 d_dx, vec3 d_dy, vec2 lean) {
+    vec3 d = r.d;
+    vec2 at = g_at / g_alpha;
+    vec2 duv = design_uv(v_config, at);
+    // the pixel's footprint on the ground there: a ray met at distance t moves its point on a
+    // level plane by t (δd − d δd.y / d.y) as its direction changes by δd (a ray differential)
+    float t = length(at - r.eye.xz) / max(length(d.xz), 1e-4);
+    float dy = d.y < 0.0 ? min(d.y, -0.01) : max(d.y, 0.01);
+    vec2 foot_x = t * (d_dx.xz - d.xz * d_dx.y / dy) * v_config.zw;
+    vec2 foot_y = t * (d_dy.xz - d.xz * d_dy.y / dy) * v_config.zw;
+    vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color_at(duv, foot_x, foot_y),
+                           design_ambient(duv), design_diffuse(duv));
+    color = technique(wind_view(color / g_alpha, lean)) * g_alpha;  // of the mean colour
+    float depth_lambda = g_depth_lambda < 0.0 ? g_reached : g_depth_lambda;
+    vec3 world = r.e + depth_lambda * d + base;
+    vec4 clip = u_view_proj * vec4(world, 1.0);
+    gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
+    f_color = vec4(color, g_alpha);                           // premultiplied
+}
+
+void main() {
+    vec3 base = vec3(v_origin.x, v_ground.x, v_origin.y);  // the cuboid's corner in the world
+    Ray r;
+    r.eye = u_eye - base;
+    r.band_top = min(u_band.y, u_height);
+    r.top = r.band_top + v_ground.y;  // the cuboid's (vertex stage)
+    r.d = normalize(v_patch - r.eye);                         // eq. 5.5 (no rotation yet)
+    vec3 d_dx = dFdx(r.d), d_dy = dFdy(r.d);  // how the ray turns across the pixel
+    vec3 entered = enter_cuboid(r.eye, r.d, r.top);
+    r.lod = max(log2(distance(r.eye, entered) * u_lod_scale), 0.0);
+    r.e = skip_air(entered, r.d, r.top, r.band_top);
+    vec3 d = r.d, e = r.e;
     // the wind where the ray enters (it varies over metres, a ray crosses a cell or two): the
-    // slices are read where the bent blades came from (Habel's sheared lookup, _wind.glsl)
-    // (taken where the ray reaches half the grass's height over the ground under its start:
+    // slices are read where the bent blades came from (Habel's sheared lookup, _wind.glsl),
+    // taken where the ray reaches half the grass's height over the ground under its start:
     // the blades it shows stand there, not under the cuboid's top where it enters at grazing
-    // angles, metres nearer)
+    // angles, metres nearer
     vec2 lean = vec2(0.0);
     WindShear shear = wind_still(u_height);
     if (WIND_ON) {
-        float over = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
+        float over = e.y - ground_under(e.xz);
         float run = d.y < -1e-4 ? clamp((over - 0.5 * u_height) / -d.y, 0.0, 4.0) : 0.0;
         lean = wind_lean(v_origin + e.xz + run * d.xz);
         shear = wind_shear(lean, u_height);
     }
-    float rows = float(textureSize(u_side_color, 0).y) / (2.0 * u_slices);
-
-    float side_spread = level_value(u_side_spread, lod);
     // the blades' mean diffuse factor seen along the ray, as bent by the wind here
     float facing = WIND_ON ? facing_leaned(facing_entry(-d), lean) : facing_lambert(-d);
     // The slices are sheared with the ground, the blades stand upright on it: on a slope the
@@ -306,260 +571,25 @@ void main() {
     // meets |d.x| N slices of one and |d.z| N of the other, where it meets the blades of N
     // slabs once. So each crossing counts 1 / (|d.x| + |d.z|) of a slab (1 / |cos φ| per
     // family would count a diagonal ray's blades twice).
-    float crossing = length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
-    float depth_lambda = -1.0;
-    // The depth is that of the point where the ray became half opaque, for the fragment's own
-    // test against what was drawn before it (ground, blades, image-based grass).
-    const float depth_alpha = 0.5;
-    float reached = 0.0;  // the farthest point of the ray known to lie above the ground
-    // where the ray crosses the horizontal slice's plane (never, if it starts below or rises,
-    // or if there is none: u_floor < 0);
-    // On uneven ground the layer follows the ground: the ray's height over it, h(λ), is
-    // positive where the ray enters, and the layer lies at its first zero. Rising ground
-    // meets the layer before the flat plane at the entry's ground would: a march of a few
-    // steps towards that plane looks for a point below; falling ground meets it beyond: steps
-    // to where the plane would be at the ground reached; once a point lies below, regula falsi
-    // between it and the last point above. Flat at the entry's ground, the layer hovered over
-    // downhill ground in a macro-cell and the ray met it too soon (a darker rectangle on the
-    // meadow's slopes), and lay under uphill ground, where the soil showed in diamonds between
-    // the slices (the DEM; tests/render/test_displacement.py). A search from the flat plane
-    // alone jumped past hill crests to the ground beyond them.
-    float floor_y = u_floor + ground_density(design_uv(v_config, e.xz)).x - v_ground.x;
-    // How fast the ray's height over the ground falls along it, by the ground's slope where it
-    // enters: a ray rising up a hill that rises faster falls into the grass like one falling
-    // onto flat ground. Taken by d.y alone, such rays never met the layer, nor were their runs
-    // too short for a crossing counted: the soil showed in dashes along the cuboids' walls on
-    // the landscape's hill, seen from its valley, where a ray entered the grass just before
-    // the wall (docs/far-field.md).
+    r.crossing = length(d.xz) / max(abs(d.x) + abs(d.z), 1e-6);
+    vec2 safe_d = vec2(abs(d.x) < 1e-6 ? 1e-6 : d.x, abs(d.z) < 1e-6 ? 1e-6 : d.z);
+    vec2 to_bound = (mix(vec2(0.0), v_size, step(0.0, vec2(d.x, d.z))) - e.xz) / safe_d;
+    r.exit = min(to_bound.x, to_bound.y);
+    if (d.y > 1e-6) r.exit = min(r.exit, (r.top - e.y) / d.y);
     float descent = d.y - dot(0.5 * slope, d.xz);
-    float floor_lambda = (HAS_FLOOR && u_floor >= 0.0 && descent < -1e-4 && e.y > floor_y)
-                       ? (floor_y - e.y) / descent : 1e30;
-    if (floor_lambda < 1e29) {
-        float a = 0.0, ha = e.y - floor_y, b = floor_lambda, hb = -1.0;
-        bool below = false;
-        for (int k = 0; k < 5; ++k) {
-            float x = below ? a + (b - a) * ha / (ha - hb)
-                    : (k < 2 ? floor_lambda * float(k + 1) / 2.0 : a - ha / descent);
-            vec3 q = e + x * d;
-            float hx = q.y - (u_floor + ground_density(design_uv(v_config, q.xz)).x - v_ground.x);
-            if (hx > 0.0) {
-                a = x;
-                ha = hx;
-            } else {
-                b = x;
-                hb = hx;
-                below = true;
-            }
-        }
-        floor_lambda = below ? a + (b - a) * ha / (ha - hb) : a - ha / descent;
-    }
-    // The horizontal slice's sample, shaded here once, before the loop, and composited when
-    // the ray reaches it: inside the loop SIMD lanes meet it at different steps, and its
-    // fetches and shading ran once for every step at which any lane of a group met it
-    // (sward bench --suite volume_cost measures the pass).
-    vec4 floor_sample = vec4(0.0);
-    vec2 floor_ao_l = vec2(0.0);
-    float floor_keep = 0.0;
-    float floor_tan = tan(over_ground);
-    // where the ray enters the grass above the floor (its height over the ground taken as
-    // falling evenly to the floor), and how much of its run from there to the floor the
-    // vertical slices' crossings count (`counted`, in the loop)
-    float entry_h = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
-    float counted = 0.0;
+    Floor f = floor_sample(r, floor_crossing(e, d, descent), ground_up, facing * slope_l, shear);
     // the colour a view from the ray's elevation over the ground meets of the vertical slices
     // (the table's rows: θ_j = 90° ((j + ½) / 8)², as image.glsl)
     float met_row = clamp(sqrt(over_ground * 0.63661977) * 8.0 - 0.5, 0.0, 7.0);
     int met_i = int(floor(met_row));
     vec3 floor_met = mix(u_side_colors[met_i], u_side_colors[min(met_i + 1, 7)],
                          met_row - float(met_i));
-    vec3 floor_at = e + floor_lambda * d;
-    if (floor_lambda < 1e29) {
-        if (all(greaterThanEqual(floor_at.xz, vec2(0.0))) && all(lessThanEqual(floor_at.xz, v_size))) {
-            floor_sample = horizontal(floor_at, wind_unbend(shear, u_floor).yz, lod,
-                                      facing * slope_l, floor_ao_l, floor_keep);
-            // in this pass's band of heights (u_band); on sloping ground the ray meets their
-            // area from above over the vertical part of its run through the layer,
-            // n_y u_y / (u · n) of the top view's depth (as image.glsl)
-            bool in_band = u_floor >= u_band.x && u_floor < min(u_band.y, u_height + 1.0);
-            float top_run = ground_up.y * max(-d.y, 0.0) / max(dot(-d, ground_up), 1e-3);
-            floor_sample.a = in_band
-                ? 1.0 - pow(1.0 - min(floor_sample.a, 0.999), top_run) : 0.0;
-            if (!in_band) floor_keep = 0.0;
-            // where grass of a type beneath grows, its volume holds what the ray meets below
-            floor_sample.a *= 1.0 - clamp(dot(textureLod(u_design, vec3(design_uv(v_config,
-                floor_at.xz), 0.0), 0.0), u_under), 0.0, 1.0);
-        }
-    }
-    vec2 mirror_cell = vec2(1e9), s = v_mirror;  // the symmetry vector of the cell last hit
-    // Each crossing stands for the blades of the ray's path around it (a slice holds the
-    // blades between it and its neighbours, thesis 4.2.1): the crossings of both families cut
-    // the ray into stretches, each from half the way back to the crossing before (of either
-    // family) to half the way on to the next, the first from where the ray starts and the last
-    // to where it leaves what it may cross; each crossing counts the part of its stretch inside
-    // the grass layer (0 … height over the ground), in slabs: the ray's mean distance between
-    // crossings, p_inum / (|d.x| + |d.z|), is a slab's worth (the weight `crossing` counts it
-    // as 1 / (|d.x| + |d.z|) of a slab, below). The stretches tile the ray, so a ray through the
-    // layer in less than a slab (a slope facing the eye, a steep view) meets the share of
-    // blades its path holds wherever the planes fall. A slab's length about each crossing left
-    // the ray's two ends uncounted: a ray that meets the grass only near where it enters its
-    // cuboid (up a slope, through the cuboid's front wall) lost up to half of it, by where the
-    // planes fell, and the soil showed in rings that follow the slice spacing (the landscape's
-    // hill seen from its valley).
-    float slab = p_inum / max(abs(d.x) + abs(d.z), 0.25);
-    vec2 spacing = p_inum / abs(safe_d);  // the ray between two planes of either family
-    // where the ray leaves its cuboid (by a wall or the top)
-    vec2 bound = mix(vec2(0.0), v_size, step(0.0, vec2(d.x, d.z)));
-    vec2 to_bound = (bound - e.xz) / safe_d;
-    float exit_lambda = min(to_bound.x, to_bound.y);
-    if (d.y > 1e-6) exit_lambda = min(exit_lambda, (top - e.y) / d.y);
-    float prev_lambda = 0.0;
-    float rate_lambda = 0.0;
-    float prev_y = e.y - (ground_density(design_uv(v_config, e.xz)).x - v_ground.x);
-    for (int i = 0; i < u_max_steps; ++i) {
-        vec2 w = (pi - e.xz) / safe_d;                        // eqs. 5.15-5.16
-        bool hit_x = w.x < w.y;
-        float lambda = max(hit_x ? w.x : w.y, 0.0);           // eq. 5.17
-        float next_lambda = hit_x ? min(w.x + spacing.x, w.y) : min(w.x, w.y + spacing.y);
-        if (floor_lambda < lambda) {  // the horizontal slice lies before the next vertical one
-            gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
-            if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
-            floor_lambda = 1e30;
-            if (g_alpha > u_opaque) break;
-        }
-        vec3 h = e + lambda * d;                              // eq. 5.18
-        // The ray stops at its cuboid's walls: the cuboid beyond draws the rest of the grass
-        // along it, blended over or under this fragment (render/frame.py).
-        if (h.y < 0.0 || h.y > top || any(lessThan(h.xz, vec2(0.0)))
-            || any(greaterThan(h.xz, v_size))) break;
-        vec2 gd = ground_density(design_uv(v_config, h.xz));
-        // eqs. 6.16-6.18: shift the lookup by the ground under the hit
-        float y = h.y - (gd.x - v_ground.x);
-        // the heights over the ground the crossing's stretch spans (the ground taken as
-        // straight between this crossing and the previous one), from where the ray entered
-        float rate = lambda - rate_lambda > 1e-4 ? (y - prev_y) / (lambda - rate_lambda) : d.y;
-        float from = i == 0 ? 0.0 : 0.5 * (prev_lambda + lambda);
-        float to = next_lambda >= exit_lambda ? exit_lambda : 0.5 * (lambda + next_lambda);
-        float y_from = y - rate * (lambda - from), y_to = y + rate * (to - lambda);
-        float lo = min(y_from, y_to), hi = max(y_from, y_to);
-        prev_lambda = lambda;
-        rate_lambda = lambda;
-        prev_y = y;
-        // under the ground the ray is hidden by the ground drawn before: nothing after counts
-        // (nor, for a pass of a band of heights, under that band: u_band)
-        if (hi < u_band.x) break;
-        if (y >= 0.0) reached = lambda;
-        if (lo > band_top) {
-            if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;
-            continue;
-        }
-        float in_lo = max(lo, u_band.x), in_hi = min(hi, band_top);
-        float share_in = hi - lo > 1e-5 ? max(in_hi - in_lo, 0.0) / (hi - lo) : 1.0;
-        float inside = share_in * (to - from) / slab;
-        counted += share_in * (to - from);
-        // the stretch's blades are read at the middle of its heights inside the layer, and
-        // stand there on the ray: the crossing point itself may lie under the ground (a ray
-        // rising up a slope meets the ground within a stretch), and a depth written there hid
-        // the fragment behind the ground
-        float mid = 0.5 * (in_lo + in_hi);
-        float sample_lambda = abs(rate) > 1e-6 ? clamp(lambda + (mid - y) / rate, from, to) : lambda;
-        y = mid;
-        float plane = hit_x ? pi.x : pi.y;
-        float slice = mod(floor(plane * u_slices), u_slices);
-        // the wind: read where the bent blades here stood at rest, moved along the slice
-        vec3 rest = wind_unbend(shear, y);  // (y, 0, 0) in still air
-        vec2 at = hit_x ? vec2(h.x, h.z - rest.z) : vec2(h.x - rest.y, h.z);
-        // eq. 6.6: a mirrored cell reads slice N-1-k and u from the other end (the bits of the
-        // cell that point lies in: a macro-cell's, or the neighbour's a ray ran on into; a
-        // blade the wind bends over a cell's edge keeps its own cell's bits)
-        vec2 cell = floor(at);
-        if (cell != mirror_cell) {  // a ray crosses N slices a cell: one fetch per cell
-            mirror_cell = cell;
-            s = cell_mirror(v_origin + cell, v_mirror);
-        }
-        if ((hit_x ? s.x : s.y) < 0.0) slice = u_slices - 1.0 - slice;
-        float u = fract((hit_x ? s.y * at.y : s.x * at.x));
-        float v = slice_v(rest.x / u_height, rows, lod);
-        vec2 uv = atlas_uv(u, v, hit_x ? slice : u_slices + slice);
-        vec4 c = textureLod(u_side_color, uv, lod);
-        vec4 data = textureLod(u_side_data, uv, lod);
-        float density = u_density * v_density * gd.y;
-        // The share of the texel's blades kept (density map, LOD transition) thins them as a
-        // layer of random blades thins: transmittance (1 - a)^share, like the crossing above.
-        // Scaling the alpha by the share made half the blades cover half as much where they
-        // cover more than half of it: at the hand-over from the blades (whose other half are
-        // drawn as geometry) the ground showed between the two (sward quality, docs/lod-quality.md: meadow
-        // default 480 × 270 2.02 -> 1.88 the floor, its geometry region 1.61 -> 1.06).
-        float share = lod_share(data.a, side_spread, density,
-                                lod_at(v_lod, distance(u_eye.xz, v_origin + h.xz), v_size));
-        // A reduced level's texel averages alpha over rows whose depths differ (the lower
-        // rows all but opaque, the upper ones nearly empty); a ray descending through the
-        // grass crosses the slices at all those heights and meets the mean of their depths,
-        // not the depth of their mean alpha, which counted too few (the soil showed on the
-        // landscape's hill, seen from its valley). The texel's depth is scaled by its row's
-        // at the base level over its row's at the level read: the row keeps the base level's
-        // depth at this height, the texel where along the slice the blades stand.
-        float levels = float(textureSize(u_side_depths, 0).y);
-        float row = textureLod(u_side_depths, vec2(v, (lod + 0.5) / levels), 0.0).r;
-        float base = textureLod(u_side_depths, vec2(v, 0.5 / levels), 0.0).r;
-        float depth = -log(1.0 - clamp(c.a, 0.0, 0.999)) * (base + 1e-3) / (row + 1e-3);
-        c.a = 1.0 - exp(-depth * crossing * share * inside);
-        if (c.a > 0.003) {
-            vec3 n = slice_normal(data) * vec3(s.x, 1.0, s.y);
-            if (dot(n, -d) < 0.0) n = -n;
-            // A texel's normal is the mean of its blades' (render/slices.py): of one blade near
-            // the eye, of many far away, where the mean is short and lights them as one dull
-            // face (the far volume 5-17/255 darker than the blades in --sun-view). Lit by its
-            // own direction, blended towards the blades' mean diffuse factor seen from the ray
-            // (the facing table) as far as the averaging shortened it, from unit length to that
-            // of the family's mean normal.
-            float len = length(n);
-            float k = clamp((1.0 - len) / (1.0 - u_side_mean_length), 0.0, 1.0);
-            // under the wind the texel's normal turns with the blades' curve here (wind_axis)
-            if (WIND_ON) n = turn(n, vec3(0.0, 1.0, 0.0), wind_axis(shear, y));
-            float l = mix(lambert_through(n / max(len, 1e-4)), facing, k) * slope_l;
-            gather(c, ao_blade(y, density), l, h.xz);  // eqs. 5.19-5.20
-            if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = sample_lambda;
-            if (g_alpha > u_opaque) break;
-        }
-        if (hit_x) pi.x += pd.x * p_inum; else pi.y += pd.y * p_inum;  // eq. 5.21
-    }
-    if (floor_lambda < 1e29 && g_alpha <= u_opaque) {  // left the slices before the plane
-        gather(floor_sample, floor_ao_l.x, floor_ao_l.y, floor_at.xz);
-        if (depth_lambda < 0.0 && g_alpha > depth_alpha) depth_lambda = floor_lambda;
-    }
-    if (floor_keep > 0.0 && g_alpha <= u_opaque) {
-        // the run through the grass: from where the ray's height over the ground (falling
-        // evenly from `entry_h` to the floor at floor_at) reaches the top of the pass's
-        // heights to where it reaches the ground or leaves the cuboid
-        float fall = (entry_h - u_floor) / max(distance(e, floor_at), 1e-6);
-        float start = entry_h > band_top ? (entry_h - band_top) / max(fall, 1e-6) : 0.0;
-        // of the whole run, the part in this cuboid its crossings did not count: the cuboid
-        // beyond a wall the ray leaves by counts the rest
-        float full = entry_h / max(fall, 1e-6) - start;
-        float run = min(full + start, exit_lambda) - start;
-        float missed = full > 1e-6 ? clamp((run - counted) / full, 0.0, 1.0) : 0.0;
-        gather(missed_blades(missed, floor_keep, floor_tan, floor_met), floor_ao_l.x, floor_ao_l.y,
-               floor_at.xz);
-    }
+    march_slices(r, f, shear, facing, slope_l);
+    if (f.lambda < 1e29 && g_alpha <= u_opaque) gather_floor(f);  // it lies beyond the slices
+    if (f.keep > 0.0 && g_alpha <= u_opaque)
+        gather_missed(r, f, e.y - ground_under(e.xz), tan(over_ground), floor_met);
     if (g_alpha < 0.01) discard;
-    vec2 at = g_at / g_alpha;
-    vec2 duv = design_uv(v_config, at);
-    // the pixel's footprint on the ground there: a ray met at distance t moves its point on a
-    // level plane by t (δd − d δd.y / d.y) as its direction changes by δd (a ray differential)
-    float t = length(at - eye.xz) / max(length(d.xz), 1e-4);
-    float dy = d.y < 0.0 ? min(d.y, -0.01) : max(d.y, 0.01);
-    vec2 foot_x = t * (d_dx.xz - d.xz * d_dx.y / dy) * v_config.zw;
-    vec2 foot_y = t * (d_dy.xz - d.xz * d_dy.y / dy) * v_config.zw;
-    vec3 color = shade_sum(g_c_ao, g_c_l, g_ao, g_l, design_color_at(duv, foot_x, foot_y),
-                           design_ambient(duv), design_diffuse(duv));
-    color = technique(wind_view(color / g_alpha, lean)) * g_alpha;  // the technique view of the mean colour
-    // A ray that never became that opaque takes the depth of the farthest point it reached
-    // above the ground: its grass lies before it, and the ground beyond.
-    if (depth_lambda < 0.0) depth_lambda = reached;
-    vec3 world = e + depth_lambda * d + base;
-    vec4 clip = u_view_proj * vec4(world, 1.0);
-    gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;
-    f_color = vec4(color, g_alpha);                           // premultiplied
+    shade_and_write(r, base, d_dx, d_dy, lean);
 }
 
 #endif

@@ -1,6 +1,6 @@
 """Far away, the image-based grass shows what the blades show: level with the grass a ray meets
 the tips and covers the ground (shaders/image.glsl), so its colour agrees with the blades' band
-by band down the frame (scripts/representation_bands.py measures the same)."""
+by band down the frame."""
 
 import numpy as np
 import pytest
@@ -69,7 +69,7 @@ def test_volume_rays_meet_the_blades_at_the_heights_the_geometry_shows(headless)
 
 def _sun_view(doc_scene):
     """White blades lit by a white sun alone, over black ground: a pixel's grey is the diffuse
-    factor the grass shows there (scripts/representation_bands.py --sun-view)."""
+    factor the grass shows there."""
     import dataclasses
 
     doc = doc_scene.recoloured((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)).document()
@@ -171,17 +171,11 @@ def test_far_grass_lights_upright_blades_on_a_slope_like_the_blades(
     """The bench on a ramp rising 14 degrees away from a camera 5 degrees over the horizon,
     white blades on black soil: sun alone over ambient alone is the blades' diffuse factor. The
     slices are sheared with the ground, the blades stand upright (their parts that lean down
-    the slope stand out): the volume's light takes the slope-ratio table (core/facing.py); it
-    was 13 % brighter than the blades here without it (scripts/facing_check.py --height-scale 8
-    --elevations 5 --azimuths 0: 0.445 against 0.392). The image-based grass is lit as on flat
-    ground (its facing table) and takes the table's upright-on-the-slope over upright-on-flat
-    layer: the meadow's tall grass, whose long bent blades show it most, was 19 % brighter than
-    its blades here without it (0.505 against 0.424), 6 % with it (on flat ground it is 2-4 %
-    brighter: scripts/facing_check.py). Seen 39 degrees off the ramp's fall line (`azimuth`),
-    with the sun 84 degrees to the side of the view, the ground also rises across the view: the
-    table's blocks by that rise took the volume from 4.7 % darker than the blades to within 1 %
-    (scripts/facing_check.py --distance 20 --elevations 5 --azimuths 321 --height-scale 8 on
-    the meadow's main grass, its sun at 315)."""
+    the slope stand out): the volume's light takes the slope-ratio table (core/facing.py). The
+    image-based grass is lit as on flat ground (its facing table) and takes the table's
+    upright-on-the-slope over upright-on-flat layer. Seen 39 degrees off the ramp's fall line
+    (`azimuth`), with the sun 84 degrees to the side of the view, the ground also rises across
+    the view: the table's blocks by that rise keep the volume's light with the blades'."""
     import dataclasses
     import math
 
