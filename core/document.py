@@ -10,15 +10,14 @@ view connects `document.events.<name>` without Qt.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Any, Generic, TypeVar, overload
 
 import numpy as np
 from psygnal import Signal, SignalGroup
 
 from core.camera import Camera
 from core.design_maps import LAYER_INDEX, DesignMaps
+from core.evented import Field, check_type
 from core.heights import bilinear
 from core.lighting import Lighting
 from core.lod import LodConfig
@@ -28,7 +27,6 @@ from core.props import boxes
 from core.terrain import Terrain
 from core.wind import Wind
 
-T = TypeVar("T")
 MAIN_GRASS = "main grass"  # the first grass type's name (density channel 0)
 
 
@@ -92,15 +90,6 @@ class TerrainSpec:
             raise ValueError(f"height scale {self.height_scale:g} is out of range; 0 … 10000")
 
 
-def _check_type(kind: type[T]) -> Callable[[Document, Any], T]:
-    def check(_doc: Document, value: Any) -> T:
-        if not isinstance(value, kind):
-            raise TypeError(f"expected a {kind.__name__}, got {type(value).__name__}")
-        return value
-
-    return check
-
-
 def _check_density(_doc: Document, value: float) -> float:
     if not 0.0 <= value <= 1.0:
         raise ValueError(f"density = {value:g} is out of range; allowed 0 … 1")
@@ -137,7 +126,7 @@ def _check_props(_doc: Document, value: tuple) -> tuple[Prop, ...]:
 
 
 def _check_terrain_spec(doc: Document, value: TerrainSpec) -> TerrainSpec:
-    _check_type(TerrainSpec)(doc, value)
+    check_type(TerrainSpec)(doc, value)
     old = getattr(doc, "_terrain_spec", None)
     if old is not None and (value.columns, value.rows) != (old.columns, old.rows):
         raise ValueError("the terrain's size is fixed with its maps")
@@ -146,51 +135,18 @@ def _check_terrain_spec(doc: Document, value: TerrainSpec) -> TerrainSpec:
     return value
 
 
-class _Field(Generic[T]):
-    """A document value declared once: how it is checked, its event (`events.<name>`, sent
-    only when the value changed) and its place in `Document.apply`. Dictionaries are handed
-    out as copies, so a change always goes through the setter."""
-
-    def __init__(self, check: Callable[[Document, Any], T], doc: str = "") -> None:
-        self.check = check
-        self.__doc__ = doc
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.name, self.slot = name, f"_{name}"
-
-    @overload
-    def __get__(self, doc: None, owner: type) -> _Field[T]: ...
-
-    @overload
-    def __get__(self, doc: Document, owner: type) -> T: ...
-
-    def __get__(self, doc: Document | None, owner: type) -> _Field[T] | T:
-        if doc is None:
-            return self
-        value = getattr(doc, self.slot)
-        return dict(value) if isinstance(value, dict) else value  # type: ignore[return-value]
-
-    def __set__(self, doc: Document, value: T) -> None:
-        value = self.check(doc, value)
-        if not hasattr(doc, self.slot):
-            setattr(doc, self.slot, value)  # the first value: nobody listens yet
-        elif value != getattr(doc, self.slot):
-            setattr(doc, self.slot, value)
-            getattr(doc.events, self.name).emit(dict(value) if isinstance(value, dict) else value)
-
-
 class Document:
-    name = _Field(_check_type(str), "The project's name.")
-    description = _Field(_check_type(str))
-    density = _Field(_check_density, "The global density, 0 … 1.")
-    slices = _Field(_check_type(SliceParams), "How patches become slices.")
-    light = _Field(_check_type(Lighting), "Sun, ambient light and fog (core/lighting.py).")
-    wind = _Field(_check_type(Wind), "The wind over the terrain (core/wind.py).")
-    cameras = _Field(_check_cameras, "The named cameras, bookmarks among them.")
-    default_camera = _Field(_check_default_camera)
-    paths = _Field(_check_paths, "Camera paths: name -> key cameras.")
-    props = _Field(_check_props, "Boxes and rocks standing in the grass.")
-    terrain_spec = _Field(_check_terrain_spec, "The grid of cells and how its ground is shaped.")
+    name = Field(check_type(str), "The project's name.")
+    description = Field(check_type(str))
+    density = Field(_check_density, "The global density, 0 … 1.")
+    slices = Field(check_type(SliceParams), "How patches become slices.")
+    light = Field(check_type(Lighting), "Sun, ambient light and fog (core/lighting.py).")
+    wind = Field(check_type(Wind), "The wind over the terrain (core/wind.py).")
+    cameras = Field(_check_cameras, "The named cameras, bookmarks among them.")
+    default_camera = Field(_check_default_camera)
+    paths = Field(_check_paths, "Camera paths: name -> key cameras.")
+    props = Field(_check_props, "Boxes and rocks standing in the grass.")
+    terrain_spec = Field(_check_terrain_spec, "The grid of cells and how its ground is shaped.")
 
     def __init__(
         self,
@@ -240,7 +196,7 @@ class Document:
             self.set_lod(*args)
         elif name == "terrain":
             self.rebuild_terrain()
-        elif isinstance(getattr(Document, name, None), _Field):
+        elif isinstance(getattr(Document, name, None), Field):
             setattr(self, name, *args)
         else:
             raise ValueError(f"no document field {name!r}")
@@ -395,9 +351,9 @@ class Document:
         return (tuple(self._grass), *(getattr(self, f"_{name}") for name in FIELDS))
 
 
-FIELDS = tuple(name for name, value in vars(Document).items() if isinstance(value, _Field))
+FIELDS = tuple(name for name, value in vars(Document).items() if isinstance(value, Field))
 
-# One signal per document field (Document's `_Field`s) and three more: a grass type's blade
+# One signal per document field (Document's `Field`s) and three more: a grass type's blade
 # parameters or LOD levels changed (its index, the new value), and the terrain was rebuilt after
 # the height map changed (`Document.rebuild_terrain`). `events.all` relays every one of them:
 # the render processes follow the document through it.

@@ -70,76 +70,15 @@ def slope_moments(
     y − g · (its offset from the root along the view) − c · (its offset to the viewer's right),
     g = tan θ − tan e the ground's rise per unit run away from the eye, c its rise to the right
     (`across`, θ's shape; 0 if not given), and not at all where that is below the ground."""
-    n = np.asarray(normals, np.float64).reshape(-1, 3)
-    length = np.linalg.norm(n, axis=1)
-    pick = np.flatnonzero(length > 1e-6)
-    pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
     e = np.asarray(to_eye, np.float64).reshape(-1, 3)
     e = e / np.linalg.norm(e, axis=1, keepdims=True)
     shape = np.shape(theta)
-    if len(pick) == 0:
+    seen = _SeenVertices.of(normals, positions, roots, e, canopy, sample)
+    if seen is None:
         none = np.zeros((0, int(np.prod(shape))))
         nothing = LightMoments.of(np.zeros((0, 3)), none, none).reshaped(shape)
         return nothing, nothing if sheared else None
-    n = n[pick] / length[pick, None]
-    position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
-    y = position[:, 1:2]  # (k, 1)
-    offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
-    ne = n @ e.T  # (k, m)
-    away = -e[:, [0, 2]]
-    away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
-    right = np.stack([-away[:, 1], away[:, 0]], axis=1)  # (x, z) to the viewer's right
     elevation = np.arcsin(np.clip(e[:, 1], 0.0, 1.0))
-    # the (k, m) weights in single precision, made by one compiled loop per pass (_seen)
-    # rather than as several (k, m) numpy temporaries
-    along = (offset @ away.T).astype(np.float32)  # each vertex's offset from its root …
-    sideways = (offset @ right.T).astype(np.float32)  # … along the view and to its right
-    height = y[:, 0].astype(np.float32)
-    face = np.abs(ne).astype(np.float32)
-    # the patch's side of the light's sums, once (core/light_moments.py): Σ w |n · e| n^α and
-    # Σ w |n · e| are one product of the weights times |n · e| with these; the signed sum
-    # Σ w |n · e| s n = Σ w (n · e) n = (Σ w n nᵀ) e needs no second (k, m) product
-    basis = np.hstack([powers(n), np.ones((len(n), 1))]).astype(np.float32)  # (k, P + 1)
-    outer = (n[:, :, None] * n[:, None, :]).reshape(-1, 9).astype(np.float32)  # (k, 9)
-    seen = np.empty(face.shape, np.float32)
-    weights = np.empty(face.shape, np.float32)
-
-    def moments(t: np.ndarray, g: np.ndarray, c: np.ndarray) -> LightMoments:
-        """The sums over the upright vertices seen at elevations t, the ground rising g along
-        the view and c across it: weights w (Canopy.transmittance at the vertex's height over
-        the ground, none below it), times |n · e|."""
-        through = np.exp(-canopy.cumulative(t)).astype(np.float32)  # once per depth, direction
-        through[through < 1e-30] = 0.0  # no subnormals into the products below
-        _seen(height, along, sideways, face, g, c, through, canopy.dy, canopy.height, seen,
-              weights)  # fmt: skip
-        sums = (seen.T @ basis).astype(np.float64)
-        second = (weights.T @ outer).astype(np.float64).reshape(-1, 3, 3)  # Σ w n nᵀ
-        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, e), sums[:, -1])
-
-    # The sheared blades stand at their own heights y, so each vertex keeps one canopy row in
-    # every view (_seen's row of y): their sums are, per row, the sums over its vertices
-    # (once) weighted by what reaches that row from each view, not a pass over the vertices a
-    # view. So are the upright blades' on flat ground (no rise along or across: y again),
-    # which leave out what lies below the ground (the last bin) and equal the sheared exactly.
-    rows = canopy.rows
-    per_row = np.float32(1.0 / canopy.dy)
-    row_of = np.minimum((height * per_row).astype(np.int64), rows - 1)  # int() truncates
-    row_of[height >= np.float32(canopy.height)] = rows  # above the grass: the last row
-    row_of[height < 0.0] = rows + 1
-    by_row = [np.flatnonzero(row_of == r) for r in range(rows + 2)]
-    row_sums = np.stack([(face[i].T @ basis[i]).astype(np.float64) for i in by_row])
-    row_outer = np.stack([outer[i].astype(np.float64).sum(axis=0) for i in by_row])
-
-    def by_rows(t: np.ndarray, below: bool) -> LightMoments:
-        """The sums at elevations t with each vertex at its own height (`below`: those under
-        the ground count in the first row, as the sheared blades do)."""
-        through = np.exp(-canopy.cumulative(t)).astype(np.float32).astype(np.float64)
-        through[through < 1e-30] = 0.0
-        through = np.concatenate([through, through[:1] if below else 0.0 * through[:1]])
-        sums = np.einsum("rm,rmp->mp", through, row_sums)
-        second = np.einsum("rm,rj->mj", through, row_outer).reshape(-1, 3, 3)
-        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, e), sums[:, -1])
-
     thetas = np.clip(np.asarray(theta, np.float64), GRAZING, 0.5 * np.pi - 1e-3)
     rises = np.zeros(thetas.shape) if across is None else np.broadcast_to(across, thetas.shape)
     upright, sheared_parts = [], []
@@ -148,14 +87,90 @@ def slope_moments(
         g = np.clip(np.tan(t) - np.tan(elevation), -MAX_RISE, MAX_RISE).astype(np.float32)
         g[np.abs(g) < 1e-9] = 0.0  # flat ground exactly: rounding would move a vertex off its row
         c = np.clip(rises[index], -MAX_RISE, MAX_RISE).astype(np.float32)
-        upright.append(by_rows(t, False) if not (g.any() or c.any()) else moments(t, g, c))
+        flat = not (g.any() or c.any())
+        upright.append(seen.by_rows(t, False) if flat else seen.upright(t, g, c))
         if sheared:
-            sheared_parts.append(by_rows(t, True))
-
+            sheared_parts.append(seen.by_rows(t, True))
     return (
         LightMoments.stack(upright).reshaped(shape),
         LightMoments.stack(sheared_parts).reshaped(shape) if sheared else None,
     )
+
+
+class _SeenVertices:
+    """A sample of a patch's vertices, prepared once for every view of slope_moments: their
+    heights, their offsets from the root along and across each view, |n · e|, and the
+    patch's side of the light's sums (core/light_moments.py): Σ w |n · e| n^α and
+    Σ w |n · e| are one product of the weights times |n · e| with `basis`; the signed sum
+    Σ w |n · e| s n = Σ w (n · e) n = (Σ w n nᵀ) e needs no second (k, m) product."""
+
+    @classmethod
+    def of(cls, normals, positions, roots, e, canopy: Canopy, sample: int):
+        n = np.asarray(normals, np.float64).reshape(-1, 3)
+        length = np.linalg.norm(n, axis=1)
+        pick = np.flatnonzero(length > 1e-6)
+        pick = pick[np.linspace(0, len(pick) - 1, min(len(pick), sample)).astype(np.int64)]
+        if len(pick) == 0:
+            return None
+        position = np.asarray(positions, np.float64).reshape(-1, 3)[pick]
+        offset = position[:, [0, 2]] - np.asarray(roots, np.float64).reshape(-1, 2)[pick]
+        return cls(n[pick] / length[pick, None], position[:, 1:2], offset, e, canopy)
+
+    def __init__(self, n, y, offset, e, canopy: Canopy) -> None:
+        self.e, self.canopy = e, canopy
+        ne = n @ e.T  # (k, m)
+        away = -e[:, [0, 2]]
+        away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)  # (m, 2)
+        right = np.stack([-away[:, 1], away[:, 0]], axis=1)  # (x, z) to the viewer's right
+        # the (k, m) weights in single precision, made by one compiled loop per pass (_seen)
+        # rather than as several (k, m) numpy temporaries
+        self.along = (offset @ away.T).astype(np.float32)  # each vertex's offset from its root …
+        self.sideways = (offset @ right.T).astype(np.float32)  # … along the view and to its right
+        self.height = y[:, 0].astype(np.float32)
+        self.face = np.abs(ne).astype(np.float32)
+        self.basis = np.hstack([powers(n), np.ones((len(n), 1))]).astype(np.float32)  # (k, P + 1)
+        self.outer = (n[:, :, None] * n[:, None, :]).reshape(-1, 9).astype(np.float32)  # (k, 9)
+        self.seen = np.empty(self.face.shape, np.float32)
+        self.weights = np.empty(self.face.shape, np.float32)
+        # The sheared blades stand at their own heights y, so each vertex keeps one canopy row
+        # in every view (_seen's row of y): their sums are, per row, the sums over its vertices
+        # (once) weighted by what reaches that row from each view, not a pass over the vertices
+        # a view. So are the upright blades' on flat ground (no rise along or across: y again),
+        # which leave out what lies below the ground (the last bin) and equal the sheared
+        # exactly.
+        rows = canopy.rows
+        per_row = np.float32(1.0 / canopy.dy)
+        row_of = np.minimum((self.height * per_row).astype(np.int64), rows - 1)  # truncates
+        row_of[self.height >= np.float32(canopy.height)] = rows  # above the grass: the last row
+        row_of[self.height < 0.0] = rows + 1
+        by_row = [np.flatnonzero(row_of == r) for r in range(rows + 2)]
+        self.row_sums = np.stack(
+            [(self.face[i].T @ self.basis[i]).astype(np.float64) for i in by_row]
+        )
+        self.row_outer = np.stack([self.outer[i].astype(np.float64).sum(axis=0) for i in by_row])
+
+    def upright(self, t: np.ndarray, g: np.ndarray, c: np.ndarray) -> LightMoments:
+        """The sums over the upright vertices seen at elevations t, the ground rising g along
+        the view and c across it: weights w (Canopy.transmittance at the vertex's height over
+        the ground, none below it), times |n · e|."""
+        canopy = self.canopy
+        through = np.exp(-canopy.cumulative(t)).astype(np.float32)  # once per depth, direction
+        through[through < 1e-30] = 0.0  # no subnormals into the products below
+        _seen(self.height, self.along, self.sideways, self.face, g, c, through, canopy.dy,
+              canopy.height, self.seen, self.weights)  # fmt: skip
+        sums = (self.seen.T @ self.basis).astype(np.float64)
+        second = (self.weights.T @ self.outer).astype(np.float64).reshape(-1, 3, 3)  # Σ w n nᵀ
+        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, self.e), sums[:, -1])
+
+    def by_rows(self, t: np.ndarray, below: bool) -> LightMoments:
+        """The sums at elevations t with each vertex at its own height (`below`: those under
+        the ground count in the first row, as the sheared blades do)."""
+        through = np.exp(-self.canopy.cumulative(t)).astype(np.float32).astype(np.float64)
+        through[through < 1e-30] = 0.0
+        through = np.concatenate([through, through[:1] if below else 0.0 * through[:1]])
+        sums = np.einsum("rm,rmp->mp", through, self.row_sums)
+        second = np.einsum("rm,rj->mj", through, self.row_outer).reshape(-1, 3, 3)
+        return LightMoments(sums[:, :-1], np.einsum("mij,mj->mi", second, self.e), sums[:, -1])
 
 
 @numba.njit(cache=True)

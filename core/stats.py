@@ -33,6 +33,24 @@ class FrameStats:
     # per grass type and LOD level drawn: (type index, representation, slices, instances)
     levels: list[tuple[int, str, int, int]] = field(default_factory=list)
 
+    def add_instances(self, representation: str, count: int) -> None:
+        """`count` more instances drawn as geometry, volume or image-based grass."""
+        if representation == "geometry":
+            self.c_g += count
+        elif representation == "volume":
+            self.c_v += count
+        else:
+            self.c_i += count
+
+    def add_time(self, representation: str, ms: float) -> None:
+        """`ms` more spent drawing geometry, volume or image-based grass."""
+        if representation == "geometry":
+            self.t_g_ms += ms
+        elif representation == "volume":
+            self.t_v_ms += ms
+        else:
+            self.t_i_ms += ms
+
     def level_count(self, grass_type: int, representation: str, slices: int = 0) -> int:
         """Instances the LOD level (representation, slices) of one grass type drew."""
         return sum(

@@ -8,7 +8,6 @@ timed as a whole.
 
 from __future__ import annotations
 
-import math
 import threading
 import time
 from collections.abc import Callable
@@ -33,23 +32,16 @@ from core.view_mode import ViewMode
 from core.wind import Wind
 from render.conversion import PatchConverter
 from render.design_maps import DesignMapTextures, union
-from render.geometry import GeometryRenderer
+from render.frame_draw import blades_drawn, draw_view
 from render.grass_type import GrassTypeRenderer
 from render.ground import GroundRenderer
-from render.image import ImageRenderer
 from render.overlay import OverlayRenderer
 from render.present import HALF, Presenter, release_fbo
 from render.props import PropRenderer
 from render.slices import SliceTextures
 from render.tiling import TilingNoise
 from render.uniforms import FrameUniforms
-from render.volume import VolumeRenderer
-from render.volume_order import DEPTH_BANDS, beneath_heights, distance_bands, stacked_parts
 from render.wind import WindNoise
-
-
-class FrameAborted(Exception):
-    """A frame given up before it was finished (FramePipeline.render's `abort`)."""
 
 
 class FramePipeline:
@@ -68,6 +60,7 @@ class FramePipeline:
         self.mode = ViewMode.GEOMETRY
         self.view = "shaded"  # shaded | techniques | wind
         self.slice_params = SliceParams()
+        self.density = 1.0  # the document's global density (set_density)
         # True: slices are converted here, at once, when a mode needs them (command line, tests).
         # The draft render process sets False and converts after its first draft
         # (render/render_server.py).
@@ -93,28 +86,9 @@ class FramePipeline:
         self.present = Presenter(ctx)
         self._abort: Callable[[], bool] | None = None
 
-    # -- the first grass type, as the designer and the tests reach it -------------------------
-    @property
-    def geometry(self) -> GeometryRenderer:
-        return self.grass_types[0].geometry
-
-    @property
-    def image(self) -> ImageRenderer:
-        return self.grass_types[0].image
-
-    @property
-    def volume(self) -> VolumeRenderer:
-        """The volume renderer of the designer's slice count (volume-only and compare modes)."""
-        return self.grass_types[0].volume(self.slice_params.slices)
-
-    @property
-    def lod(self) -> LodConfig:
-        return self.grass_types[0].lod
-
     # -- scene state (render/binding.py keeps it in step with the document) -------------------
     def set_grass_types(self, types: list[tuple[LodConfig, int]]) -> None:
         """One renderer set per grass type: (LOD levels, density-map channel); patches follow."""
-        density = self.geometry.density
         for grass in self.grass_types:
             grass.release()
         self.grass_types = []
@@ -122,7 +96,7 @@ class FramePipeline:
             grass = GrassTypeRenderer(self.ctx, channel)
             grass.lod = lod
             grass.set_instances(self._instances)
-            grass.set_density(density)
+            grass.set_density(self.density)
             self.grass_types.append(grass)
 
     def set_mode(self, mode: str) -> None:
@@ -257,6 +231,8 @@ class FramePipeline:
             grass.set_instances(instances)
 
     def set_density(self, density: float) -> None:
+        """The document's global density, 0 … 1, for every grass type."""
+        self.density = density
         for grass in self.grass_types:
             grass.set_density(density)
 
@@ -322,7 +298,7 @@ class FramePipeline:
             ctx.finish()
         stats.t_o_ms = (time.perf_counter() - t_clear) * 1000.0
         for (region, _), query in zip(views, queries, strict=True):
-            self._draw(region, query, stats, measure)
+            draw_view(self, region, query, stats, measure)
         t1 = time.perf_counter()
         if half_resolution:
             self.present.scale_up(fbo, out, size)
@@ -343,7 +319,7 @@ class FramePipeline:
         total = 0
         for grass, selected in zip(self.grass_types, cells, strict=True):
             count = int(selected.batches.get(("geometry", 0), np.zeros(0)).size)
-            total += _blades(grass, count)[1]
+            total += blades_drawn(grass, count)[1]
         return total
 
     def _query(
@@ -393,117 +369,6 @@ class FramePipeline:
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         return frame, cells
 
-    def _draw(
-        self,
-        region: tuple[int, int, int, int],
-        query: tuple[FrameUniforms, list],
-        stats: FrameStats,
-        measure: bool,
-    ) -> None:
-        """Ground, props and grass of one view into `region` of the bound framebuffer; the
-        statistics add up over the regions of a frame."""
-        ctx = self.ctx
-        frame, cells = query
-        ctx.viewport = region
-
-        def timed(fn) -> float:
-            if measure:
-                ctx.finish()
-            start = time.perf_counter()
-            fn()
-            if measure:
-                ctx.finish()
-            return (time.perf_counter() - start) * 1000.0
-
-        self.map_textures.use(sorted({g.density_channel for g in self.grass_types}))
-        self.tiling.use()
-        self.wind_noise.use()
-
-        drawn = []
-        occupancy = self.occupancy()  # up to date with the density map, or None when not used
-        pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
-        terrain = self.terrain
-        for index, (grass, selected) in enumerate(zip(self.grass_types, cells, strict=True)):
-            grass.image.view = (frame.eye, pixel, terrain)  # its slices' grids
-            tu = time.perf_counter()
-            batches = grass.upload(selected, frame.eye, self.terrain, occupancy)
-            stats.t_u_ms += (time.perf_counter() - tu) * 1000.0
-            drawn.append(batches)
-            for (representation, slices), (_renderer, count) in batches.items():
-                stats.levels.append((index, representation, slices, count))
-                counter = {"geometry": "c_g", "volume": "c_v", "image": "c_i"}[representation]
-                setattr(stats, counter, getattr(stats, counter) + count)
-                if representation == "geometry":
-                    blades, triangles = _blades(grass, count)
-                    stats.blades += blades
-                    stats.triangles += triangles
-        # The volume blends its partly covered fragments over what is already drawn, so it goes
-        # last: behind its far edge the image-based grass must be there already, not the soil;
-        # its passes' order is render/volume_order.py's.
-        order = {"geometry": 0, "image": 1, "volume": 2}
-        self._stack_layers()
-        beneath = beneath_heights(
-            [g.image.layer_height() for g in self.grass_types],
-            [g.image.textures.height if g.image.textures else 0.0 for g in self.grass_types],
-        )
-        parts = stacked_parts(beneath)
-        passes = []
-        volumes = []
-        for index, batches in enumerate(drawn):
-            for (representation, slices), (renderer, count) in batches.items():
-                if representation != "volume":
-                    passes.append(
-                        ((order[representation], -slices), representation, renderer, count)
-                    )
-                elif count:
-                    for turn, band in parts[index]:
-                        volumes.append(((turn, -slices), renderer, band))
-        for _, representation, renderer, drawn_count in sorted(passes, key=lambda p: p[0]):
-            if drawn_count:
-                self._check_abort()
-                key = {"geometry": "t_g_ms", "image": "t_i_ms"}[representation]
-                elapsed = timed(lambda r=renderer: _passes(r, frame))
-                setattr(stats, key, getattr(stats, key) + elapsed)
-        # The ground and the props after the blades and the image-based grass, whose samples
-        # are opaque where they cover (alpha to coverage, no blending): the ground's fragments
-        # behind them fail the depth test before they are shaded. Before the volume, which
-        # blends over it.
-        stats.t_m_ms += timed(
-            lambda: (self.ground.draw(frame, self.map_textures), self.props.draw(frame))
-        )
-        volumes.sort(key=lambda v: v[0])
-        count = DEPTH_BANDS if len(volumes) > 1 else 1
-        for row in distance_bands([r.distances for _, r, _ in volumes], count):
-            for (_, renderer, band), part in zip(volumes, row, strict=True):
-                if part.stop > part.start:
-                    self._check_abort()
-                    renderer.set_instances(renderer.cells[part], renderer.carriers_of(part))
-                    renderer.band = band
-                    stats.t_v_ms += timed(lambda r=renderer: _passes(r, frame))
-        self.overlay.draw(frame)
-
-    def _check_abort(self) -> None:
-        if self._abort is not None and self._abort():
-            raise FrameAborted
-
-    def _stack_layers(self) -> None:
-        """Tell each type's image-based and volume renderers which types' slices lie below its
-        own (of two as high, the earlier lies below: render/volume_order.py). The volume's
-        horizontal layer holds its type's top view and would cover the grass beneath with it
-        (tests/render/test_grass_types.py): it thins as that grass's density rises."""
-        heights = [grass.image.layer_height() for grass in self.grass_types]
-        for index, (grass, own) in enumerate(zip(self.grass_types, heights, strict=True)):
-            under = [
-                other
-                for k, (other, height) in enumerate(zip(self.grass_types, heights, strict=True))
-                if own is not None and height is not None and (height, k) < (own, index)
-            ]
-            grass.image.under_channels = tuple(other.density_channel for other in under)
-            tallest = max(under, key=lambda other: other.image.textures.height, default=None)
-            grass.image.under = tallest.image.textures.canopy if tallest is not None else None
-            for volume in grass.volumes.values():
-                volume.under_channels = grass.image.under_channels
-
     def release(self) -> None:
         for grass in self.grass_types:
             grass.release()
@@ -520,19 +385,3 @@ class FramePipeline:
             release_fbo(fbo)
         self._targets.clear()
         self.present.release()
-
-
-def _blades(grass, count: int) -> tuple[int, int]:
-    """The blades and triangles `count` geometry instances of a grass type draw."""
-    patch = grass.patch
-    if patch is None or not count:
-        return 0, 0
-    visible = int(np.count_nonzero(patch.thresholds <= grass.geometry.density))
-    return visible * count, visible * count * patch.params.subdivisions * 2
-
-
-def _passes(renderer, frame: FrameUniforms) -> None:
-    """A renderer's three passes (thesis ch. 5): prepare, draw, finalize."""
-    renderer.prepare(frame)
-    renderer.draw()
-    renderer.finalize()

@@ -32,7 +32,8 @@ from render import context
 from render import protocol as msg
 from render.binding import DocumentBinding
 from render.comparison import lod_against_geometry
-from render.frame import FrameAborted, FramePipeline
+from render.frame import FramePipeline
+from render.frame_draw import FrameAborted
 from render.mapped import MappedArray
 from render.process_start import DRAFT, FULL
 from render.slices import SliceTextures
@@ -140,7 +141,7 @@ class RenderServer:
         terrain = p.terrain
         facts = {
             "role": self.role,
-            "volume_slices": p.volume.slices,
+            "volume_slices": p.slice_params.slices,
             "needs_slices": p.needs_slices,
             "lighting": p.lighting,
             "wind": p.wind,

@@ -10,12 +10,10 @@ W A S D move and Q E sink and rise.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from time import monotonic
 from typing import ClassVar
 
 import numpy as np
-from PySide6.QtCore import QEventLoop, QPoint, QSocketNotifier, Qt, QTimer, Signal
+from PySide6.QtCore import QPoint, QSocketNotifier, Qt, QTimer, Signal
 from PySide6.QtGui import QColor, QImage, QPainter
 from PySide6.QtWidgets import QWidget
 
@@ -28,6 +26,7 @@ from core.view_mode import ViewMode
 from core.wind import Wind
 from render import protocol as msg
 from render.render_client import Frame, RenderClient
+from widgets.qt_clock import QtClock, wait_until
 
 # LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
 ZONE_COLORS = {
@@ -37,27 +36,6 @@ ZONE_COLORS = {
 }
 BRUSH_COLOR = (1.0, 1.0, 1.0, 0.9)
 IMAGE_TIMEOUT_S = 600.0
-
-
-class _QtClock:
-    """The frame schedule's clock: monotonic time and Qt's single-shot timers."""
-
-    def __init__(self, parent: QWidget) -> None:
-        self.parent = parent
-
-    def now(self) -> float:
-        return monotonic()
-
-    def call_later(self, seconds: float, callback: Callable[[], None]) -> QTimer:
-        timer = QTimer(self.parent, singleShot=True, interval=int(seconds * 1000))
-        timer.timeout.connect(callback)
-        timer.timeout.connect(timer.deleteLater)
-        timer.start()
-        return timer
-
-    def cancel(self, handle: QTimer) -> None:
-        handle.stop()
-        handle.deleteLater()
 
 
 class GrassViewport(QWidget):
@@ -102,7 +80,7 @@ class GrassViewport(QWidget):
         self.schedule = FrameSchedule(
             self.renderer,
             lambda: (self.camera, self._size()),
-            _QtClock(self),
+            QtClock(self),
             on_show=self._show,
             on_quality=self._show_quality,
             on_quality_asked=lambda: self.status_changed.emit(
@@ -246,12 +224,7 @@ class GrassViewport(QWidget):
         self.renderer.set_view_state(msg.SetOverlay("zones", []))
         version = self.schedule.ask_screenshot(self.camera, size)
         images = self.schedule.screenshots
-        loop = QEventLoop()
-        timer = QTimer(interval=20, timeout=lambda: version in images and loop.quit())
-        timer.start()
-        QTimer.singleShot(int(IMAGE_TIMEOUT_S * 1000), loop.quit)
-        loop.exec()
-        timer.stop()
+        wait_until(lambda: version in images, IMAGE_TIMEOUT_S)
         self._update_outline()
         frame = images.pop(version, None)
         if frame is None:
@@ -263,20 +236,13 @@ class GrassViewport(QWidget):
         document), once it has handled every change sent before this call."""
         token = self.schedule.new_token()
         self.renderer.query(token, role)
-        loop = QEventLoop()
         found: dict = {}
 
-        def check() -> None:
-            facts = self.renderer.facts(token, role)
-            if facts is not None:
-                found.update(facts)
-                loop.quit()
+        def answered() -> bool:
+            found.update(self.renderer.facts(token, role) or {})
+            return bool(found)
 
-        timer = QTimer(interval=20, timeout=check)
-        timer.start()
-        QTimer.singleShot(int(timeout_s * 1000), loop.quit)
-        loop.exec()
-        timer.stop()
+        wait_until(answered, timeout_s)
         return found
 
     def paintEvent(self, _event) -> None:

@@ -40,7 +40,7 @@ def test_each_change_reaches_the_pipeline_and_nothing_after_detach(ctx):
     binding = DocumentBinding(pipeline, doc)
     try:
         doc.density = 0.4
-        assert pipeline.geometry.density == 0.4
+        assert pipeline.grass_types[0].geometry.density == 0.4
         lod = LodConfig.zones(geometry_end=2.0, volume_end=9.0)
         doc.set_lod(1, lod)
         assert pipeline.grass_types[1].lod == lod
@@ -55,6 +55,6 @@ def test_each_change_reaches_the_pipeline_and_nothing_after_detach(ctx):
         assert pipeline.terrain is new
         binding.detach()
         doc.density = 0.9
-        assert pipeline.geometry.density == 0.4
+        assert pipeline.grass_types[0].geometry.density == 0.4
     finally:
         pipeline.release()

@@ -18,7 +18,7 @@ def test_flat_cells_are_one_quad_and_look_as_the_grid_does(headless, monkeypatch
     doc = get_scene("patch-grid").document()
     renderer = headless(doc, mode="image")
     quads, _ = renderer.render(CAMERA, SIZE)
-    image = renderer.pipeline.image
+    image = renderer.pipeline.grass_types[0].image
     assert image.instance_count > 0
     assert image.batches[1].instance_count == image.instance_count  # every cell of the flat grid
     image.flat_ground = -1.0  # every cell a grid of the finest kind
@@ -42,7 +42,7 @@ def test_cells_on_a_slope_are_grids(headless):
     )
     renderer = headless(ramp.document(), mode="image")
     renderer.render(CAMERA, SIZE)
-    image = renderer.pipeline.image
+    image = renderer.pipeline.grass_types[0].image
     counts = {n: batch.instance_count for n, batch in image.batches.items()}
     assert counts[1] > 0
     assert sum(counts.values()) - counts[1] > 0

@@ -53,7 +53,8 @@ def test_slices_converted_outside_follow_patch_and_parameters(ctx):
         sliced = pipeline.converter.convert(patch, sp.slices, (sp.width, sp.height), sp.top)
         pipeline.set_slice_textures(SliceTextures.upload(ctx, sliced), patch, sp)
         assert not pipeline.needs_slices
-        assert pipeline.volume.slices == 2 and pipeline.image.textures is pipeline.volume.textures
+        first = pipeline.grass_types[0]
+        assert first.volume(2).slices == 2 and first.image.textures is first.volume(2).textures
         doc.slices = sp.replace(slices=4)
         assert pipeline.needs_slices  # new parameters: convert again
     finally:

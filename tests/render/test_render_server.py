@@ -9,7 +9,7 @@ import numpy as np
 
 from core.stats import FrameStats
 from render import render_server
-from render.frame import FrameAborted
+from render.frame_draw import FrameAborted
 from render.protocol import FrameRequest
 from render.render_server import DRAFT, RenderServer
 
