@@ -34,12 +34,7 @@ def blocks(image: np.ndarray, k: int) -> np.ndarray:
 
 
 def main() -> None:
-    from app.sweep import MAGENTA, cases
-    from core.camera import Camera
-    from core.image_diff import to_float
-    from core.quality import technique_regions
-    from render.grass_type import technique_colors
-    from render.headless import HeadlessRenderer
+    from app.sweep import cases
 
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--case", default="meadow/default")
@@ -56,20 +51,38 @@ def main() -> None:
     camera = document.camera(case.camera)
     width, height = (int(v) for v in args.size.split("x"))
     if args.window:
-        x, y, rows = (float(v) for v in args.window.split(","))
-        eye = camera.eye
-        ahead = np.asarray(camera.target) - eye
-        ahead /= np.linalg.norm(ahead)
-        right = np.cross(ahead, [0.0, 1.0, 0.0])
-        right /= np.linalg.norm(right)
-        up = np.cross(right, ahead)
-        t = math.tan(math.radians(camera.fov_y) / 2.0)
-        ray = ahead + (right * (x - width / 2) + up * (height / 2 - y)) / (height / 2) * t
-        fov = 2.0 * math.degrees(math.atan(t * rows / height))
-        camera = Camera.from_eye_target(eye, eye + ray, fov_y=fov, near=camera.near, far=camera.far)
-        width, height = int(2 * rows), int(rows)
+        camera, width, height = window_camera(camera, args.window, width, height)
     if args.wind:
         document.wind = document.wind.replace(enabled=True)
+    print(json.dumps(compare(args, document, camera, width, height)))
+
+
+def window_camera(camera, window: str, width: int, height: int):
+    """A camera `rows` pixels high about pixel (x, y) of `camera`'s frame; its size."""
+    from core.camera import Camera
+
+    x, y, rows = (float(v) for v in window.split(","))
+    eye = camera.eye
+    ahead = np.asarray(camera.target) - eye
+    ahead /= np.linalg.norm(ahead)
+    right = np.cross(ahead, [0.0, 1.0, 0.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, ahead)
+    t = math.tan(math.radians(camera.fov_y) / 2.0)
+    ray = ahead + (right * (x - width / 2) + up * (height / 2 - y)) / (height / 2) * t
+    fov = 2.0 * math.degrees(math.atan(t * rows / height))
+    narrow = Camera.from_eye_target(eye, eye + ray, fov_y=fov, near=camera.near, far=camera.far)
+    return narrow, int(2 * rows), int(rows)
+
+
+def compare(args, document, camera, width: int, height: int) -> dict:
+    """The LOD frame's and the (supersampled) blades' soil share, mean colour and, with the
+    wind, change between 0 and 0.5 s per representation's region."""
+    from app.sweep import MAGENTA
+    from core.image_diff import to_float
+    from core.quality import technique_regions
+    from render.grass_type import technique_colors
+    from render.headless import HeadlessRenderer
 
     def frames(mode: str, scale: int) -> dict:
         size = (width * scale, height * scale)
@@ -118,7 +131,7 @@ def main() -> None:
                             float(moved.mean(-1)[whole].mean()), 5
                         )
         result[name] = row
-    print(json.dumps(result))
+    return result
 
 
 if __name__ == "__main__":
