@@ -126,7 +126,7 @@ class DesignerWindow(QMainWindow):
             lambda configs, text: self.push(commands.set_lods(self.document, configs, text))
         )
         self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
-        self.light_panel.lighting_edited.connect(
+        self.light_panel.light_edited.connect(
             lambda light: self.push(commands.set_light(self.document, light))
         )
         self.wind_panel.wind_edited.connect(
@@ -148,12 +148,12 @@ class DesignerWindow(QMainWindow):
 
     def _bind_document(self, document: Document) -> None:
         """The window's own views of the document (the others bind themselves)."""
-        document.events.light.connect(self.light_panel.show_lighting)
+        document.events.light.connect(self.light_panel.show_light)
         document.events.wind.connect(self.wind_panel.show_wind)
         document.events.cameras.connect(self._on_cameras_changed)
 
     def _unbind_document(self, document: Document) -> None:
-        document.events.light.disconnect(self.light_panel.show_lighting)
+        document.events.light.disconnect(self.light_panel.show_light)
         document.events.wind.disconnect(self.wind_panel.show_wind)
         document.events.cameras.disconnect(self._on_cameras_changed)
 
@@ -183,7 +183,7 @@ class DesignerWindow(QMainWindow):
             self.panel.set_document(document)
             self.lod_panel.set_document(document)
             self.paint_panel.set_grass_names(document.grass_names)
-            self.light_panel.show_lighting(document.light)
+            self.light_panel.show_light(document.light)
             self.wind_panel.show_wind(document.wind)
             fill_camera_menu(self)
         finally:

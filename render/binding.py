@@ -41,7 +41,7 @@ class DocumentBinding:
         p.set_terrain(d.terrain)
         p.set_design_maps(d.maps)
         p.set_props(d.prop_boxes())
-        p.lighting = d.light
+        p.light = d.light
         p.wind = d.wind
         p.set_density(d.density)
         for index, grass in enumerate(d.grass_types):
@@ -65,7 +65,7 @@ class DocumentBinding:
         self.pipeline.set_slice_params(slices)
 
     def _on_light(self, light: Lighting) -> None:
-        self.pipeline.lighting = light
+        self.pipeline.light = light
 
     def _on_wind(self, wind: Wind) -> None:
         self.pipeline.wind = wind

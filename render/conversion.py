@@ -231,7 +231,7 @@ class PatchConverter:
         keep = (0.0, 0.0, 0.0, 1.0)
         prog["u_clip_lo"].value = tuple(plane_lo) if plane_lo is not None else keep
         prog["u_clip_hi"].value = tuple(plane_hi) if plane_hi is not None else keep
-        frame = FrameUniforms(view_proj=view_proj, eye=np.zeros(3), lighting=Lighting())
+        frame = FrameUniforms(view_proj=view_proj, eye=np.zeros(3), light=Lighting())
         self.geometry.alpha_ref = self.alpha_ref
         self.geometry.prepare(frame)
         ctx.enable_direct(GL_CLIP_DISTANCE0)

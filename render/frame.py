@@ -66,7 +66,7 @@ class FramePipeline:
         # (render/render_server.py).
         self.auto_convert = True
         self._converter: PatchConverter | None = None
-        self.lighting = Lighting()
+        self.light = Lighting()
         self.map_textures = DesignMapTextures(
             ctx, DesignMaps(1)
         )  # neutral until a scene brings maps
@@ -292,7 +292,7 @@ class FramePipeline:
         t_clear = time.perf_counter()
         fbo = self.present.target((dw, dh)) if half_resolution else self._target(size, self.samples)
         fbo.use()
-        sky = self.lighting.sky_color
+        sky = self.light.sky_color
         fbo.clear(sky[0], sky[1], sky[2], 1.0, depth=1.0)
         if measure:
             ctx.finish()
@@ -336,7 +336,7 @@ class FramePipeline:
         frame = FrameUniforms(
             view_proj=camera.projection(w / max(h, 1)) @ camera.view(),
             eye=camera.eye,
-            lighting=self.lighting,
+            light=self.light,
             technique_view=self.view == "techniques",
             wind_view=self.view == "wind",
             viewport_height=h,

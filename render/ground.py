@@ -128,7 +128,7 @@ class GroundRenderer:
                 self.program, [(self.vbo, "2f", "in_corner")]
             )
         frame.apply(self.program)
-        light = frame.lighting
+        light = frame.light
         p = self.program
         p["u_extent"].value = self.extent
         p["u_soil_color"].value = light.soil_color

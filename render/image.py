@@ -166,9 +166,9 @@ class ImageRenderer:
         p = self.program
         frame.apply(p, self.technique_color)
         if self.facing is not None:
-            self.facing.use(frame.lighting, frame.wind.enabled, draft=frame.draft)
+            self.facing.use(frame.light, frame.wind.enabled, draft=frame.draft)
             p["u_facing"].value = FACING_UNIT
-        bind_slopes(p, self.slope, frame.lighting, draft=frame.draft)
+        bind_slopes(p, self.slope, frame.light, draft=frame.draft)
         p["u_density_channel"].value = self.density_channel
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         p["u_lift"].value = self.layer_height()
@@ -176,7 +176,7 @@ class ImageRenderer:
             p["u_grass_height"].value = float(self.textures.height)
             p["u_canopy"].value = self.canopy
         p["u_level_colors"].write(np.ascontiguousarray(self.textures.level_colors, np.float32))
-        own, over = self.level_shade(frame.lighting.blade_ao_height)
+        own, over = self.level_shade(frame.light.blade_ao_height)
         p["u_level_shade"].write(np.ascontiguousarray(own, np.float32))
         p["u_over_shade"].write(np.ascontiguousarray(over, np.float32))
         canopy = self.textures.canopy

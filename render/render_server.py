@@ -143,7 +143,7 @@ class RenderServer:
             "role": self.role,
             "volume_slices": p.slice_params.slices,
             "needs_slices": p.needs_slices,
-            "lighting": p.lighting,
+            "light": p.light,
             "wind": p.wind,
             "patch_params": [g.patch.params if g.patch else None for g in p.grass_types],
             "height_scale": terrain.height_scale if terrain is not None else 0.0,

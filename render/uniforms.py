@@ -27,7 +27,7 @@ class FrameUniforms:
 
     view_proj: np.ndarray
     eye: np.ndarray
-    lighting: Lighting
+    light: Lighting
     technique_view: bool = False
     viewport_height: int = 1  # pixels, for the volume renderer's mip level
     fov_y: float = 50.0  # degrees
@@ -54,12 +54,12 @@ class FrameUniforms:
         values = {
             "u_view_proj": gl_bytes(self.view_proj),
             "u_eye": tuple(float(x) for x in self.eye),
-            "u_light_dir": tuple(float(x) for x in self.lighting.sun_direction),
-            "u_light_color": self.lighting.sun_color,
-            "u_ambient_color": self.lighting.ambient_color,
-            "u_translucency": self.lighting.translucency,
-            "u_ao_impact": self.lighting.blade_ao_impact,
-            "u_ao_height": self.lighting.blade_ao_height,
+            "u_light_dir": tuple(float(x) for x in self.light.sun_direction),
+            "u_light_color": self.light.sun_color,
+            "u_ambient_color": self.light.ambient_color,
+            "u_translucency": self.light.translucency,
+            "u_ao_impact": self.light.blade_ao_impact,
+            "u_ao_height": self.light.blade_ao_height,
             "u_design": DESIGN_UNIT,
             "u_design_far": FAR_DESIGN_UNIT,
             "u_height_scale": float(self.height_scale),

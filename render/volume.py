@@ -150,9 +150,9 @@ class VolumeRenderer(InstancedRenderer):
         # how short averaging makes a normal at most (shaders/volume.glsl blends by it)
         p["u_side_mean_length"].value = min(float(np.linalg.norm(t.sides.mean_normal)), 0.99)
         if self.facing is not None:
-            self.facing.use(frame.lighting, frame.wind.enabled, draft=frame.draft)
+            self.facing.use(frame.light, frame.wind.enabled, draft=frame.draft)
             p["u_facing"].value = FACING_UNIT
-        bind_slopes(p, self.slope, frame.lighting, draft=frame.draft)
+        bind_slopes(p, self.slope, frame.light, draft=frame.draft)
         if t.sides.depths is None:
             raise ValueError("vertical slices uploaded without their rows' depths")
         for unit, (name, tex) in enumerate(
@@ -180,7 +180,7 @@ class VolumeRenderer(InstancedRenderer):
         p["u_floor"].value = floor
         p["u_top_spread"].write(spread_levels(t.top.spread))
         p["u_top_lod_offset"].value = math.log2(t.top.color.width / t.sides.color.width)
-        p["u_floor_shade"].value = t.canopy.top_shade(frame.lighting.blade_ao_height)
+        p["u_floor_shade"].value = t.canopy.top_shade(frame.light.blade_ao_height)
         p["u_under"].value = tuple(1.0 if c in self.under_channels else 0.0 for c in range(4))
         top = min(self.band[1], float(t.height))
         column = t.canopy.side_column(self.band[0]) - t.canopy.side_column(top)

@@ -25,9 +25,9 @@ COLOURS = (("sun_color", "Sun colour"), ("ambient_color", "Ambient colour"))
 
 
 class LightPanel(QWidget):
-    lighting_edited = Signal(object)  # Lighting
+    light_edited = Signal(object)  # Lighting
 
-    def __init__(self, lighting: Lighting, parent=None) -> None:
+    def __init__(self, light: Lighting, parent=None) -> None:
         super().__init__(parent)
         children = [
             {
@@ -37,7 +37,7 @@ class LightPanel(QWidget):
                 "limits": (low, high),
                 "step": step,
                 "suffix": suffix,
-                "value": getattr(lighting, name),
+                "value": getattr(light, name),
                 # a light edit costs the next frame nothing per blade: apply each step at once
                 # (the spin box's default waits 0.3 s for more; consecutive steps merge into
                 # one undo step, app/commands.py)
@@ -49,7 +49,7 @@ class LightPanel(QWidget):
                 "name": name,
                 "title": title,
                 "type": "color",
-                "value": QColor.fromRgbF(*getattr(lighting, name)),
+                "value": QColor.fromRgbF(*getattr(light, name)),
             }
             for name, title in COLOURS
         ]
@@ -62,19 +62,19 @@ class LightPanel(QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.tree)
         layout.addWidget(self.message)
-        self.lighting = lighting
+        self.light = light
         self._updating = False
         self.root.sigTreeStateChanged.connect(self._on_tree_changed)
 
-    def show_lighting(self, lighting: Lighting) -> None:
+    def show_light(self, light: Lighting) -> None:
         """Model -> widgets (an undo, a newly opened project)."""
-        self.lighting = lighting
+        self.light = light
         self._updating = True
         try:
             for name, *_ in NUMBERS:
-                self.root.child(name).setValue(getattr(lighting, name))
+                self.root.child(name).setValue(getattr(light, name))
             for name, _ in COLOURS:
-                self.root.child(name).setValue(QColor.fromRgbF(*getattr(lighting, name)))
+                self.root.child(name).setValue(QColor.fromRgbF(*getattr(light, name)))
         finally:
             self._updating = False
 
@@ -86,11 +86,11 @@ class LightPanel(QWidget):
             c = self.root.child(name).value()
             values[name] = (c.redF(), c.greenF(), c.blueF())
         try:
-            lighting = dataclasses.replace(self.lighting, **values)
+            light = dataclasses.replace(self.light, **values)
         except ValueError as exc:
             self.message.setText(str(exc))
             return
         self.message.clear()
-        if lighting != self.lighting:
-            self.lighting = lighting
-            self.lighting_edited.emit(lighting)
+        if light != self.light:
+            self.light = light
+            self.light_edited.emit(light)

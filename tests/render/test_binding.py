@@ -26,7 +26,7 @@ def test_attaching_synchronises_every_grass_type_and_the_scene(ctx):
         assert [k.density_channel for k in pipeline.grass_types] == [0, 1]
         assert [k.patch.params for k in pipeline.grass_types] == [k.params for k in doc.grass_types]
         assert pipeline.terrain is doc.terrain and pipeline.map_textures.maps is doc.maps
-        assert pipeline.lighting == doc.light and pipeline.slice_params == doc.slices
+        assert pipeline.light == doc.light and pipeline.slice_params == doc.slices
         assert pipeline.props.count == len(doc.props)
     finally:
         binding.detach()
@@ -47,7 +47,7 @@ def test_each_change_reaches_the_pipeline_and_nothing_after_detach(ctx):
         doc.set_params(0, doc.params(0).replace(blade_count=50))
         assert pipeline.grass_types[0].patch.params.blade_count == 50
         doc.light = Lighting(sun_elevation=12.0)
-        assert pipeline.lighting.sun_elevation == 12.0
+        assert pipeline.light.sun_elevation == 12.0
         doc.slices = SliceParams(slices=2)
         assert pipeline.slice_params.slices == 2
         doc.maps.fill("height", 0.5)

@@ -253,7 +253,7 @@ def test_the_light_panel_relights_the_grass_undoably_and_is_saved(window, qtbot,
     before = grab(window).astype(float).mean()
     window.light_panel.root.child("sun_elevation").setValue(5.0)  # the sun near the horizon
     assert window.document.light.sun_elevation == 5.0
-    assert window.viewport.renderer_facts()["lighting"].sun_elevation == 5.0
+    assert window.viewport.renderer_facts()["light"].sun_elevation == 5.0
     after = grab(window).astype(float).mean()
     assert after < before - 3  # low sun: darker grass
     assert window.projects.save_as(tmp_path / "dusk.sward")
