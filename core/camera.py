@@ -23,9 +23,8 @@ def _unit(v, what: str) -> tuple[float, float, float]:
     return (v[0] / n, v[1] / n, v[2] / n)
 
 
-# The view and projection are made every frame and their numpy versions (a dozen small array
-# operations each) cost 0.1-0.3 ms inside a frame on llvmpipe, whose rasteriser leaves the
-# caches cold: plain float arithmetic here, one array at the end.
+# The view and projection are made every frame: plain float arithmetic here, one array at the
+# end, rather than a dozen small numpy operations, each with its call overhead.
 def look_at(eye, target, up=(0.0, 1.0, 0.0)) -> np.ndarray:
     e, t = _vec3(eye), _vec3(target)
     f = _unit((t[0] - e[0], t[1] - e[1], t[2] - e[2]), "camera eye and target are the same point")

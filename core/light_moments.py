@@ -40,8 +40,7 @@ def powers(normals: np.ndarray, dtype: type = np.float64) -> np.ndarray:
     """(k, P) the monomials of degree LIGHT_DEGREE of unit normals (k, 3), in `dtype`."""
     n: np.ndarray = np.asarray(normals, dtype)
     e = _exponents()
-    # n^0 … n^d per component by repeated products (a float power per entry cost 2 ms a
-    # thousand normals, the products a tenth of that)
+    # n^0 … n^d per component by repeated products (cheaper than a float power per entry)
     table: np.ndarray = np.empty((len(n), LIGHT_DEGREE + 1, 3), dtype)  # (k, d + 1, 3)
     table[:, 0] = 1.0
     for j in range(1, LIGHT_DEGREE + 1):

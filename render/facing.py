@@ -221,8 +221,8 @@ class SlopeTable:
     against upright blades on flat ground (green: the image-based grass, lit by the flat
     ground's facing table); one 3D float texture (shaders/_lighting.glsl slope_ratios), ones
     until the grass type has slices (its canopy), rewritten when the patch, the canopy or the
-    light changes, from the sums kept_slope_moments keeps. (The volume's ratio on the
-    image-based grass made the meadow's far field worse: docs/lod-quality.md.)"""
+    light changes, from the sums kept_slope_moments keeps. The image-based grass takes the
+    flat-ground ratio, not the volume's: it is lit by the flat ground's facing table."""
 
     def __init__(
         self,

@@ -38,7 +38,7 @@ class Presenter:
         """Average the `samples` samples of each pixel of `fbo` (its colour a texture; 0: one
         sample) into `out`, of the same size. One pass of our own rather than a blit: on
         llvmpipe the blit builds its resolve anew in every process, while this program
-        comes from Mesa's shader cache (docs/latency.md, the one-shot render)."""
+        comes from Mesa's shader cache."""
         self._draw(fbo, out, fbo.size, (f"RESOLVE {max(samples, 1)}",))
 
     def _draw(self, fbo: moderngl.Framebuffer, out: moderngl.Framebuffer, size, defines) -> None:

@@ -71,8 +71,8 @@ def canonical_data(layers: SliceLayers) -> np.ndarray:
 
 @numba.njit(cache=True)
 def _canonical_into(normal, threshold, out):
-    """canonical_data per texel (compiled: as numpy array passes it took 20 ms a conversion);
-    in float64 before the float32 store, like the array arithmetic it replaces."""
+    """canonical_data per texel, compiled (one pass instead of several numpy array passes);
+    in float64 before the float32 store, as the array arithmetic does."""
     for k in range(out.shape[0]):
         for y in range(out.shape[1]):
             for x in range(out.shape[2]):

@@ -61,8 +61,8 @@ vec2 mirror_local(vec2 p, vec2 s) { return floor(p) + fract(s * p); }
 // terrain's noise map (u_tiling, render/tiling.py) that cell's own bits as core/tiling.py
 // mirror_sign gives them (eqs. 6.4-6.5), else the instance's `own`. A macro-cell covers many
 // cells and its instance carries its first cell's bits; each cell's blades are mirrored by its
-// own, and a slice lookup mirrored by the first cell's showed another patch than the blades in
-// most cells of a macro-cell (sward quality, meadow default 1024 × 768: docs/lod-quality.md).
+// own, and a slice lookup mirrored by the first cell's would show another patch than the
+// blades in most cells of a macro-cell.
 uniform sampler2D u_tiling_noise;
 uniform float u_tiling;
 vec2 cell_mirror(vec2 cell, vec2 own) {

@@ -96,7 +96,7 @@ void main() {
     // Its horizontal part, h n_y |u_xz| / (u · n) = h / tan θ, takes the side.
     float top_run = ground_up.y * max(u.y, 0.0) / max(dot(u, ground_up), 1e-3);
     // on a slope, upright blades differ from those on flat ground at this elevation over the
-    // ground (slope_ratio_flat: the DEM's tall grass far away was 10/255 too bright without it)
+    // ground (slope_ratio_flat)
     float still = WIND_ON ? 0.0 : max(facing_lambert(u), 0.0);
     v_view = vec4(tan_up, top_run, slope_ratio_flat(u, theta, across), still);
     float f = row - float(i);
