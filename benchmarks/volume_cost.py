@@ -33,7 +33,15 @@ def _floor_loader(patch: str):
     """load_program for a renderer module whose fragment stage begins with `patch`."""
     from render.shaders import ShaderError, stage_source
 
+    made: dict = {}  # compiled once per variant: the renderers ask for theirs every pass
+
     def floor_program(ctx, file, defines=()):
+        key = (ctx, file, tuple(defines))
+        if key not in made:
+            made[key] = compile_floor(ctx, file, defines)
+        return made[key]
+
+    def compile_floor(ctx, file, defines):
         def stage(kind):
             text = stage_source(file, kind, defines)
             marker = "void main() {\n"
