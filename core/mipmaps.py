@@ -229,3 +229,49 @@ def row_depths(levels: list[np.ndarray], count: int) -> np.ndarray:
         mean = (-np.log1p(-alpha.reshape(count, per_row, -1).mean(axis=2))).mean(axis=0)
         out[k] = np.interp(centres, (np.arange(per_row) + 0.5) / per_row, mean)
     return out
+
+
+# -- a linearly filtered mip chain, updated over a rectangle -----------------------------------
+def mip_sizes(width: int, height: int) -> list[tuple[int, int]]:
+    """(width, height) of each mip level GL makes for a texture of this size, the base first."""
+    sizes = [(width, height)]
+    while sizes[-1] != (1, 1):
+        w, h = sizes[-1]
+        sizes.append((max(1, w // 2), max(1, h // 2)))
+    return sizes
+
+
+def _taps(source: int, target: int, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For target texels lo … hi − 1 along one axis: the two source texels a linear filter at
+    each one's centre reads (clamped to the edge) and the second one's weight."""
+    at = (np.arange(lo, hi) + 0.5) * (source / target) - 0.5
+    first = np.floor(at)
+    weight = (at - first).astype(np.float32)
+    a = np.clip(first, 0, source - 1).astype(np.int64)
+    b = np.clip(first + 1, 0, source - 1).astype(np.int64)
+    return a, b, weight
+
+
+def reduce_rect(
+    source: np.ndarray, rect: tuple[int, int, int, int], size: tuple[int, int]
+) -> tuple[tuple[int, int, int, int], np.ndarray]:
+    """The next mip level's texels that read the changed `rect` (x, y, w, h) of `source`
+    ((rows, columns, channels)), as GL's mipmap generation filters them: each the linear filter
+    of `source` at its centre. `size` is the level's (rows, columns). Their rectangle and
+    values (float32)."""
+    rows, columns = size
+    x, y, w, h = rect
+    sy, sx = source.shape[0] / rows, source.shape[1] / columns
+    x0, x1 = max(0, int(x // sx) - 1), min(columns, int(-(-(x + w) // sx)) + 1)
+    y0, y1 = max(0, int(y // sy) - 1), min(rows, int(-(-(y + h) // sy)) + 1)
+    ax, bx, fx = _taps(source.shape[1], columns, x0, x1)
+    ay, by, fy = _taps(source.shape[0], rows, y0, y1)
+    # only the source texels those read, in single precision
+    r0, c0 = int(min(ay.min(), by.min())), int(min(ax.min(), bx.min()))
+    r1, c1 = int(max(ay.max(), by.max())) + 1, int(max(ax.max(), bx.max())) + 1
+    src = source[r0:r1, c0:c1].astype(np.float32)
+    ay, by, ax, bx = ay - r0, by - r0, ax - c0, bx - c0
+    fx, fy = fx[None, :, None], fy[:, None, None]
+    top = src[ay][:, ax] * (1.0 - fx) + src[ay][:, bx] * fx
+    bottom = src[by][:, ax] * (1.0 - fx) + src[by][:, bx] * fx
+    return (x0, y0, x1 - x0, y1 - y0), top * (1.0 - fy) + bottom * fy

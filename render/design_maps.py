@@ -9,9 +9,11 @@ its map, and `flush` (called by `use`, i.e. when a frame is drawn) uploads it. T
 mouse move become one upload.
 
 The far representations read the colour map as a pixel's footprint on the ground sees it: a
-mipmapped copy of it (a field marking a texel wide, read at the base level far away, broke into
-dots). The stack itself stays without mip levels: on
-llvmpipe a mipmapped sampler cost the ground pass several times over even at level 0."""
+mipmapped copy of it (a field marking a texel wide, read at the base level far away, breaks into
+dots). An edit redoes its levels over the edit's rectangle only, as GL's mipmap generation
+filters them: a brush dab on a 2048² map does not rebuild the whole chain. The stack itself
+stays without mip levels: on llvmpipe a mipmapped sampler costs the ground pass several times
+over even at level 0."""
 
 from __future__ import annotations
 
@@ -33,6 +35,7 @@ from core.ground_mesh import (
     quad_excess,
     vertex_sink,
 )
+from core.mipmaps import mip_sizes, reduce_rect
 from render import derived_cache
 from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
@@ -103,11 +106,14 @@ class DesignMapTextures:
         self.texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
         self.texture.repeat_x = False
         self.texture.repeat_y = False
-        self.far = ctx.texture_array((w, h, 1), 4, self._far_texels((0, 0, w, h)), dtype="f2")
+        self.far = ctx.texture((w, h), 4, self._far_texels((0, 0, w, h)), dtype="f2")
         self.far.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
         self.far.repeat_x = False
         self.far.repeat_y = False
         self.far.build_mipmaps()
+        # its levels as GL made them, read back at the first edit, which then redoes only the
+        # texels over its rectangle
+        self._far_levels: list[np.ndarray] = []
         self.uploaded_texels = w * h * layers  # for tests and the profiler: what went to the GPU
         self.pending: dict[int, Rect] = {}  # layer index -> dirty rectangle not yet uploaded
         self.grounds: dict[int, moderngl.Texture] = {}  # density channel -> (height, density)
@@ -130,6 +136,29 @@ class DesignMapTextures:
         texels = self.maps.stack[COLOR, y : y + h, x : x + w]
         weighted = np.concatenate([texels[..., :3] * texels[..., 3:], texels[..., 3:]], axis=-1)
         return np.ascontiguousarray(weighted.astype(np.float16)).tobytes()
+
+    def _update_far(self, rect: Rect) -> None:
+        """The mipmapped colour map over `rect`: its base level, then at each level the texels
+        whose filter reads what changed below them (core/mipmaps.py reduce_rect), as GL's
+        mipmap generation would make them, without making the whole chain again."""
+        if not self._far_levels:
+            self._far_levels = [
+                np.frombuffer(self.far.read(level=level), np.float16).reshape(lh, lw, 4).copy()
+                for level, (lw, lh) in enumerate(mip_sizes(*self.maps.size))
+            ]
+        x, y, w, h = rect
+        levels = self._far_levels
+        levels[0][y : y + h, x : x + w] = np.frombuffer(self._far_texels(rect), np.float16).reshape(
+            h, w, 4
+        )
+        self.far.write(levels[0][y : y + h, x : x + w].tobytes(), viewport=rect)
+        for level in range(1, len(levels)):
+            rect, values = reduce_rect(levels[level - 1], rect, levels[level].shape[:2])
+            x, y, w, h = rect
+            levels[level][y : y + h, x : x + w] = values
+            self.far.write(
+                levels[level][y : y + h, x : x + w].tobytes(), viewport=rect, level=level
+            )
 
     def _ground_texels(self, channel: int, rect: Rect) -> bytes:
         x, y, w, h = rect
@@ -226,9 +255,7 @@ class DesignMapTextures:
             self.texture.write(data.tobytes(), viewport=(x, y, i, w, h, 1))
             self.uploaded_texels += w * h
         if COLOR in self.pending:
-            x, y, w, h = self.pending[COLOR]
-            self.far.write(self._far_texels((x, y, w, h)), viewport=(x, y, 0, w, h, 1))
-            self.far.build_mipmaps()
+            self._update_far(self.pending[COLOR])
         rect = None
         for i in (DENSITY, HEIGHT):
             if i in self.pending:

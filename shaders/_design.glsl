@@ -24,13 +24,13 @@ vec3 design_diffuse(vec2 uv) { return vec3(1.0); }
 // (a footprint within a texel reads the bilinear surface at one point as well as at four),
 // each as wide as the short axis (the texture's own anisotropic filter drew saw teeth beside
 // the lines on llvmpipe; one tap at the long axis's mip level washed the far lines out).
-uniform sampler2DArray u_design_far;  // the colour map, RGB times its weight
+uniform sampler2D u_design_far;  // the colour map, RGB times its weight
 const int DESIGN_TAPS = 4;
 vec4 design_color_at(vec2 uv, vec2 dx, vec2 dy) {
     bool x_long = dot(dx, dx) > dot(dy, dy);
     vec2 major = x_long ? dx : dy;
     vec2 minor = x_long ? dy : dx;
-    vec2 size = vec2(textureSize(u_design_far, 0).xy);
+    vec2 size = vec2(textureSize(u_design_far, 0));
     float along = min(length(major) / max(length(minor), 1e-9), length(major * size));
     int taps = int(clamp(ceil(along), 1.0, float(DESIGN_TAPS)));
     // every tap's footprint is major / taps by minor: one mip level for all of them, as
@@ -39,7 +39,7 @@ vec4 design_color_at(vec2 uv, vec2 dx, vec2 dy) {
     vec4 c = vec4(0.0);
     for (int k = 0; k < taps; ++k) {
         vec2 at = uv + major * ((float(k) + 0.5) / float(taps) - 0.5);
-        c += textureLod(u_design_far, vec3(at, 0.0), lod);
+        c += textureLod(u_design_far, at, lod);
     }
     c /= float(taps);
     return vec4(c.rgb / max(c.a, 1e-4), c.a);

@@ -8,6 +8,7 @@ import pytest
 
 from app.scenes import get_scene
 from core.design_maps import LAYER_INDEX, DesignMaps
+from core.mipmaps import mip_sizes
 from core.params import PatchParams
 from render.design_maps import DesignMapTextures
 from tests.conftest import covered
@@ -146,10 +147,34 @@ def test_the_far_copy_follows_colour_edits_weighted_and_mipmapped(ctx):
     maps.write("color", 0, 0, np.full((64, 32, 4), (1.0, 0.5, 0.0, 0.5)))  # the left half
     mirror.flush()
     w, h = maps.size
-    base = np.frombuffer(mirror.far.read(), np.float16).reshape(-1, h, w, 4)[0]
+    base = np.frombuffer(mirror.far.read(), np.float16).reshape(h, w, 4)
     np.testing.assert_allclose(base[:, :32], np.tile((0.5, 0.25, 0.0, 0.5), (64, 32, 1)))
     assert np.all(base[:, 32:] == 0.0)  # white of weight 0 mixes in nothing
     mirror.release()
+
+
+@pytest.mark.parametrize("size", [(64, 64), (100, 70)])
+def test_a_brush_dab_redoes_the_far_copys_levels_as_a_whole_rebuild_would(ctx, size):
+    """A dab redoes the mipmapped copy only over its rectangle, level by level; every level
+    then holds what GL's own mipmap generation makes of the whole edited map (within a unit in
+    the last place of half floats), for sizes that halve evenly and for those that do not."""
+    rng = np.random.default_rng(3)
+    maps = DesignMaps(*size)
+    maps.write("color", 0, 0, rng.random((size[1], size[0], 4)).astype(np.float32))
+    mirror = DesignMapTextures(ctx, maps)
+    before = np.frombuffer(mirror.far.read(level=1), np.float16).copy()
+    maps.write("color", 13, 9, rng.random((7, 11, 4)).astype(np.float32))  # a dab
+    mirror.flush()
+    levels = len(mip_sizes(*size))
+    edited = [np.frombuffer(mirror.far.read(level=i), np.float16).astype(np.float32) for i in
+              range(levels)]  # fmt: skip
+    whole = DesignMapTextures(ctx, maps)  # the same map, its chain made by GL at once
+    for level, got in enumerate(edited):
+        want = np.frombuffer(whole.far.read(level=level), np.float16).astype(np.float32)
+        np.testing.assert_allclose(got, want, rtol=2e-3, atol=1e-3, err_msg=f"level {level}")
+    assert not np.array_equal(edited[1], before.astype(np.float32))  # the dab reached it
+    mirror.release()
+    whole.release()
 
 
 def _ground(mirror: DesignMapTextures) -> list[np.ndarray]:
