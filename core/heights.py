@@ -4,6 +4,7 @@ volumes, the volume cuboids' extrusion (min height, unplanarity) and the unplana
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 
@@ -51,21 +52,6 @@ def _lines(cells: int, texels: int) -> tuple[np.ndarray, np.ndarray]:
     return lines, np.searchsorted(lines, borders)
 
 
-def _crossings(shape: tuple[int, int], columns: int, rows: int):
-    """The grid where cell borders and texel-centre lines cross (_lines, each axis) and the
-    bands of cell rows sampled at a time (about 4 M samples each): (xs, x_starts, zs,
-    z_starts, [(first row, end row, first z line, last z line), ...])."""
-    h, w = shape
-    xs, x_starts = _lines(columns, w)
-    zs, z_starts = _lines(rows, h)
-    band = max(1, 4_000_000 // max(xs.size * max(zs.size // rows, 1), 1))
-    bands = [
-        (r0, min(r0 + band, rows), z_starts[r0], z_starts[min(r0 + band, rows)])
-        for r0 in range(0, rows, band)
-    ]
-    return xs, x_starts, zs, z_starts, bands
-
-
 def block_extremes(values: np.ndarray, starts: np.ndarray, axis: int):
     """Min and max of `values` over each inclusive run [starts[i], starts[i + 1]] on `axis`."""
     lo = np.minimum.reduceat(values, starts[:-1], axis=axis)
@@ -82,21 +68,59 @@ def cell_ranges(
     The bilinear surface is bilinear between texel-centre lines, so its extremes inside a cell
     lie where those lines and the cell's borders cross: sampling exactly there is exact (a tiny
     margin covers float rounding). Those crossings form one grid for the whole terrain (every
-    cell border and texel-centre line on each axis), sampled once, a band of cell rows at a
-    time; each cell takes the extremes of its block of the grid."""
-    xs, x_starts, zs, z_starts, bands = _crossings(heights.shape, columns, rows)
+    cell border and texel-centre line on each axis), sampled once in one compiled pass, a row
+    of cells at a time; each cell takes the extremes of its block of the grid."""
+    h, w = heights.shape
+    xs, x_starts = _lines(columns, w)
+    zs, z_starts = _lines(rows, h)
+    cell_x = np.minimum(np.searchsorted(xs[x_starts], xs, side="right") - 1, columns - 1)
+    x0, x1, tx = _texels(xs, w)
+    z0, z1, tz = _texels(zs, h)
     lo = np.empty((columns, rows), np.float32)
     hi = np.empty((columns, rows), np.float32)
-    margin = 1e-4 * max(scale, 1.0)
-    for r0, r1, a, b in bands:
-        # rounding to float32 keeps the order of values, so the extremes of the rounded samples
-        # are the rounded extremes (half the memory traffic for the reductions)
-        s = (bilinear_grid(heights, xs, zs[a : b + 1]) * scale).astype(np.float32)
-        x_lo, x_hi = block_extremes(s, x_starts, axis=0)  # (columns, z lines)
-        starts = z_starts[r0 : r1 + 1] - a
-        lo[:, r0:r1] = block_extremes(x_lo, starts, axis=1)[0].astype(np.float64) - margin
-        hi[:, r0:r1] = block_extremes(x_hi, starts, axis=1)[1].astype(np.float64) + margin
+    _ranges(
+        np.ascontiguousarray(heights), float(scale), x0, x1, tx, cell_x, x_starts,
+        z0, z1, tz, z_starts, 1e-4 * max(scale, 1.0), lo, hi,
+    )  # fmt: skip
     return lo, hi
+
+
+@numba.njit(cache=True, parallel=True)
+def _ranges(heights, scale, x0, x1, tx, cell_x, x_starts, z0, z1, tz, z_starts, margin, lo, hi):
+    """cell_ranges' pass: per row of cells, every crossing of an x line with that row's z lines
+    (its borders included) sampled as bilinear_grid samples it and rounded to float32 (which
+    keeps the order of values), the extremes taken per cell over the lines that bound it."""
+    columns = lo.shape[0]
+    for r in numba.prange(lo.shape[1]):
+        low = np.full(columns, np.inf, np.float32)
+        high = np.full(columns, -np.inf, np.float32)
+        for j in range(z_starts[r], z_starts[r + 1] + 1):
+            wz = tz[j]
+            for i in range(x0.shape[0]):
+                top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
+                bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
+                v = np.float32((top * (1 - wz) + bottom * wz) * scale)
+                cx = cell_x[i]
+                for c in (cx, cx - 1):
+                    # a border line bounds the cell it begins and the one before it
+                    if c == cx or (c >= 0 and i == x_starts[cx]):
+                        if v < low[c]:
+                            low[c] = v
+                        if v > high[c]:
+                            high[c] = v
+        for c in range(columns):
+            lo[c, r] = np.float64(low[c]) - margin
+            hi[c, r] = np.float64(high[c]) + margin
+
+
+@numba.njit(cache=True, parallel=True)
+def _grid(heights, scale, x0, x1, tx, z0, z1, tz, out):
+    """bilinear_grid(heights, U, V) * scale into out (U lines, V lines), the same arithmetic."""
+    for i in numba.prange(out.shape[0]):
+        for j in range(out.shape[1]):
+            top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
+            bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
+            out[i, j] = (top * (1 - tz[j]) + bottom * tz[j]) * scale
 
 
 def hills(width: int, seed: int = 0, period: int = 3) -> np.ndarray:
@@ -254,28 +278,64 @@ def corner_deviations(
     """The ground at every cell corner ((columns + 1, rows + 1) world heights) and, per cell
     ((columns, rows) each), the least and the most the ground inside it lies above the
     bilinear blend of its four corners: sampled where cell_ranges samples, which is exact for
-    the difference too (the blend is bilinear over the whole cell), with cell_ranges' margin."""
-    xs, x_starts, zs, z_starts, bands = _crossings(heights.shape, columns, rows)
-    corners = bilinear_grid(heights, xs[x_starts], zs[z_starts]) * scale  # (columns + 1, rows + 1)
-    # each x line's cell and its fraction across it (a border line: the cell it ends)
+    the difference too (the blend is bilinear over the whole cell), with cell_ranges' margin.
+    One compiled pass over the crossings, a row of cells at a time (_deviations)."""
+    h, w = heights.shape
+    xs, x_starts = _lines(columns, w)
+    zs, z_starts = _lines(rows, h)
+    corners = np.empty((columns + 1, rows + 1))  # bilinear_grid of the borders, times scale
+    _grid(np.ascontiguousarray(heights), float(scale), *_texels(xs[x_starts], w),
+          *_texels(zs[z_starts], h), corners)  # fmt: skip
+    # each line's cell and its fraction across it (a border line: the cell it begins, or the
+    # last cell for the last border), and the texels a linear filter reads there
     cell_x = np.minimum(np.searchsorted(xs[x_starts], xs, side="right") - 1, columns - 1)
-    fx = (xs * columns - cell_x)[:, None]
+    cell_z = np.minimum(np.searchsorted(zs[z_starts], zs, side="right") - 1, rows - 1)
+    x0, x1, tx = _texels(xs, w)
+    z0, z1, tz = _texels(zs, h)
     lo = np.empty((columns, rows), np.float32)
     hi = np.empty((columns, rows), np.float32)
-    margin = 1e-4 * max(scale, 1.0)
-    for r0, r1, a, b in bands:
-        z = zs[a : b + 1]
-        cell_z = np.minimum(np.searchsorted(zs[z_starts], z, side="right") - 1, rows - 1)
-        fz = (z * rows - cell_z)[None, :]
-        # the corners' blend at every sample: along x on each corner row, then along z
-        along = corners[cell_x] * (1 - fx) + corners[cell_x + 1] * fx  # (x lines, rows + 1)
-        blend = along[:, cell_z] * (1 - fz) + along[:, cell_z + 1] * fz
-        d = bilinear_grid(heights, xs, z) * scale - blend
-        x_lo, x_hi = block_extremes(d, x_starts, axis=0)
-        starts = z_starts[r0 : r1 + 1] - a
-        lo[:, r0:r1] = block_extremes(x_lo, starts, axis=1)[0] - margin
-        hi[:, r0:r1] = block_extremes(x_hi, starts, axis=1)[1] + margin
+    _deviations(
+        np.ascontiguousarray(heights), float(scale), corners,
+        x0, x1, tx, cell_x, xs * columns - cell_x, x_starts,
+        z0, z1, tz, cell_z, zs * rows - cell_z, z_starts,
+        1e-4 * max(scale, 1.0), lo, hi,
+    )  # fmt: skip
     return corners, lo, hi
+
+
+@numba.njit(cache=True, parallel=True)
+def _deviations(
+    heights, scale, corners, x0, x1, tx, cell_x, fx, x_starts,
+    z0, z1, tz, cell_z, fz, z_starts, margin, lo, hi,
+):  # fmt: skip
+    """Per row of cells r, every crossing of an x line with the z lines of that row (its
+    borders included) sampled as bilinear_grid samples it, less the blend of the corners of
+    the sample's own cell, and the extremes taken per cell over the lines that bound it: the
+    arithmetic of the numpy bands, bit for bit, in one pass."""
+    columns = lo.shape[0]
+    for r in numba.prange(lo.shape[1]):
+        low = np.full(columns, np.inf)
+        high = np.full(columns, -np.inf)
+        for j in range(z_starts[r], z_starts[r + 1] + 1):
+            cz, gz, wz = cell_z[j], fz[j], tz[j]
+            for i in range(x0.shape[0]):
+                top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
+                bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
+                sample = (top * (1 - wz) + bottom * wz) * scale
+                cx, gx = cell_x[i], fx[i]
+                near = corners[cx, cz] * (1 - gx) + corners[cx + 1, cz] * gx
+                far = corners[cx, cz + 1] * (1 - gx) + corners[cx + 1, cz + 1] * gx
+                d = sample - (near * (1 - gz) + far * gz)
+                for c in (cx, cx - 1):
+                    # a border line bounds the cell it begins and the one before it
+                    if c == cx or (c >= 0 and i == x_starts[cx]):
+                        if d < low[c]:
+                            low[c] = d
+                        if d > high[c]:
+                            high[c] = d
+        for c in range(columns):
+            lo[c, r] = low[c] - margin
+            hi[c, r] = high[c] + margin
 
 
 def ground_planes(

@@ -98,7 +98,7 @@ def test_band_passes_of_one_type_show_what_its_single_pass_shows(
     hills, where its macro-cells' cuboids are tall, shows what its one pass does. Seen from
     high up the horizontal slice shows: only the band that holds it crosses it (a mean
     difference of 0.0045 in 0 … 1 there; with the slice dropped from its band too, 0.015)."""
-    import render.frame
+    import render.frame_draw
     from core.heights import hills
     from render.volume_order import INF
 
@@ -114,7 +114,7 @@ def test_band_passes_of_one_type_show_what_its_single_pass_shows(
     height = float(renderer.pipeline.grass_types[0].image.textures.height)
     low = height / 3.0
     split = [[((0, 0), (0.0, low)), ((0, 1), (low, INF))]]
-    monkeypatch.setattr(render.frame, "stacked_parts", lambda beneath, bands=2: split)
+    monkeypatch.setattr(render.frame_draw, "stacked_parts", lambda beneath, bands=2: split)
     parts = to_float(renderer.render(camera, (256, 192))[0])
     blocks = np.abs(downsample(parts, 8) - downsample(whole, 8)).max(axis=-1)
     assert np.abs(parts - whole).mean() < mean_limit
