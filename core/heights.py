@@ -85,6 +85,15 @@ def cell_ranges(
     return lo, hi
 
 
+@numba.njit(cache=True, inline="always")
+def _sample(heights, x0, x1, tx, z0, z1, tz, i, j):
+    """The bilinear height where x line i crosses z line j, as bilinear_grid computes it: along
+    x on the two texel rows, then along z."""
+    top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
+    bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
+    return top * (1 - tz[j]) + bottom * tz[j]
+
+
 @numba.njit(cache=True, parallel=True)
 def _ranges(heights, scale, x0, x1, tx, cell_x, x_starts, z0, z1, tz, z_starts, margin, lo, hi):
     """cell_ranges' pass: per row of cells, every crossing of an x line with that row's z lines
@@ -95,11 +104,8 @@ def _ranges(heights, scale, x0, x1, tx, cell_x, x_starts, z0, z1, tz, z_starts, 
         low = np.full(columns, np.inf, np.float32)
         high = np.full(columns, -np.inf, np.float32)
         for j in range(z_starts[r], z_starts[r + 1] + 1):
-            wz = tz[j]
             for i in range(x0.shape[0]):
-                top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
-                bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
-                v = np.float32((top * (1 - wz) + bottom * wz) * scale)
+                v = np.float32(_sample(heights, x0, x1, tx, z0, z1, tz, i, j) * scale)
                 cx = cell_x[i]
                 for c in (cx, cx - 1):
                     # a border line bounds the cell it begins and the one before it
@@ -118,9 +124,7 @@ def _grid(heights, scale, x0, x1, tx, z0, z1, tz, out):
     """bilinear_grid(heights, U, V) * scale into out (U lines, V lines), the same arithmetic."""
     for i in numba.prange(out.shape[0]):
         for j in range(out.shape[1]):
-            top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
-            bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
-            out[i, j] = (top * (1 - tz[j]) + bottom * tz[j]) * scale
+            out[i, j] = _sample(heights, x0, x1, tx, z0, z1, tz, i, j) * scale
 
 
 def hills(width: int, seed: int = 0, period: int = 3) -> np.ndarray:
@@ -317,11 +321,9 @@ def _deviations(
         low = np.full(columns, np.inf)
         high = np.full(columns, -np.inf)
         for j in range(z_starts[r], z_starts[r + 1] + 1):
-            cz, gz, wz = cell_z[j], fz[j], tz[j]
+            cz, gz = cell_z[j], fz[j]
             for i in range(x0.shape[0]):
-                top = heights[z0[j], x0[i]] * (1 - tx[i]) + heights[z0[j], x1[i]] * tx[i]
-                bottom = heights[z1[j], x0[i]] * (1 - tx[i]) + heights[z1[j], x1[i]] * tx[i]
-                sample = (top * (1 - wz) + bottom * wz) * scale
+                sample = _sample(heights, x0, x1, tx, z0, z1, tz, i, j) * scale
                 cx, gx = cell_x[i], fx[i]
                 near = corners[cx, cz] * (1 - gx) + corners[cx + 1, cz] * gx
                 far = corners[cx, cz + 1] * (1 - gx) + corners[cx + 1, cz + 1] * gx

@@ -46,6 +46,24 @@ def test_cell_ranges_enclose_the_surface(map_size, columns, rows, seed):
     assert np.all(y >= lo[ix, iz]) and np.all(y <= hi[ix, iz])
 
 
+@pytest.mark.parametrize(("map_size", "columns", "rows"), [(16, 5, 7), (64, 100, 48), (9, 9, 9)])
+def test_cell_ranges_are_the_extremes_where_borders_and_texel_lines_cross(map_size, columns, rows):
+    """Each cell's range is the least and the most of the surface sampled where its borders and
+    the texel-centre lines inside it cross (where a bilinear surface takes its extremes), less
+    and plus the margin: tight, not merely enclosing."""
+    heights = np.random.default_rng(7).random((map_size, map_size)).astype(np.float32)
+    lo, hi = cell_ranges(heights, 5.0, columns, rows)
+    centres = (np.arange(map_size) + 0.5) / map_size
+    for cx, cz in [(0, 0), (columns - 1, rows - 1), (columns // 2, rows // 3)]:
+        u0, u1, v0, v1 = cx / columns, (cx + 1) / columns, cz / rows, (cz + 1) / rows
+        us = np.unique([u0, u1, *centres[(centres > u0) & (centres < u1)]])
+        vs = np.unique([v0, v1, *centres[(centres > v0) & (centres < v1)]])
+        u, v = np.meshgrid(us, vs)
+        y = (bilinear(heights, u.ravel(), v.ravel()) * 5.0).astype(np.float32)
+        assert lo[cx, cz] == pytest.approx(float(y.min()) - 5e-4, abs=1e-5)
+        assert hi[cx, cz] == pytest.approx(float(y.max()) + 5e-4, abs=1e-5)
+
+
 def test_hills_span_zero_to_one_and_vary_smoothly():
     h = hills(64, seed=3)
     assert h.min() == 0.0 and h.max() == 1.0
