@@ -94,6 +94,10 @@ class PaintPanel(QWidget):
         layout.addWidget(self.hint)
         layout.addWidget(self.message)
         layout.addStretch(1)
+        # each map keeps its own brush: what it was last painted with
+        self._brushes: dict[tuple, dict] = {}
+        self._brush_of = self.target
+        self.layer_box.currentIndexChanged.connect(self._switch_map)
         for box in (self.layer_box, self.mode_box, self.falloff_box):
             box.currentIndexChanged.connect(self._changed)
         for box in (
@@ -118,6 +122,7 @@ class PaintPanel(QWidget):
         self.layer_box.addItem("diffuse light", ("diffuse", None))
         self.layer_box.addItem("height", ("height", None))
         self.layer_box.blockSignals(False)
+        self._brush_of = self.target
 
     # -- what the brush is -------------------------------------------------------------------
     @property
@@ -174,6 +179,45 @@ class PaintPanel(QWidget):
         else:
             self.value_box.setValue(float(values[0]))
         self._changed()
+
+    # -- one brush per map -------------------------------------------------------------------
+    def _settings(self) -> dict:
+        return {
+            "mode": self.mode_box.currentIndex(),
+            "size": self.size_box.value(),
+            "strength": self.strength_box.value(),
+            "value": self.value_box.value(),
+            "color": QColor(self.color),
+            "alpha": self.alpha_box.value(),
+            "falloff": self.falloff_box.currentIndex(),
+            "spacing": self.spacing_box.value(),
+        }
+
+    def _switch_map(self, *_) -> None:
+        """Keep the brush of the map left; take up the brush the chosen map had."""
+        self._brushes[self._brush_of] = self._settings()
+        self._brush_of = self.target
+        kept = self._brushes.get(self._brush_of)
+        layer, _ = self._brush_of
+        boxes = (self.mode_box, self.size_box, self.strength_box, self.value_box,
+                 self.alpha_box, self.falloff_box, self.spacing_box)  # fmt: skip
+        for box in boxes:
+            box.blockSignals(True)
+        try:
+            if layer in SCALAR_LAYERS:
+                self.value_box.setMaximum(SCALAR_LAYERS[layer][1])
+            if kept is not None:
+                self.mode_box.setCurrentIndex(kept["mode"])
+                self.size_box.setValue(kept["size"])
+                self.strength_box.setValue(kept["strength"])
+                self.value_box.setValue(kept["value"])
+                self.color = QColor(kept["color"])
+                self.alpha_box.setValue(kept["alpha"])
+                self.falloff_box.setCurrentIndex(kept["falloff"])
+                self.spacing_box.setValue(kept["spacing"])
+        finally:
+            for box in boxes:
+                box.blockSignals(False)
 
     # -- edits -------------------------------------------------------------------------------
     def scale_size(self, factor: float) -> None:

@@ -330,6 +330,25 @@ def test_painting_height_raises_the_ground_and_the_terrain_follows(window, qtbot
     qtbot.waitUntil(lambda: vp.renderer_facts()["terrain_top"] < 0.01, timeout=10000)
 
 
+def test_each_map_keeps_its_own_brush(window, qtbot):
+    """A height target of 0.3 and a small brush stay the height map's: the density map keeps
+    what it was painted with, and each comes back when its map is chosen again."""
+    panel = window.paint_panel
+    panel.select("density", 0)
+    density = (panel.value_box.value(), panel.size_box.value(), panel.strength_box.value())
+    panel.select("height")
+    panel.value_box.setValue(0.3)
+    panel.size_box.setValue(7)
+    panel.strength_box.setValue(0.2)
+    panel.select("density", 0)
+    assert (panel.value_box.value(), panel.size_box.value(), panel.strength_box.value()) == density
+    assert panel.brush().value == (density[0],)
+    panel.select("height")
+    assert (panel.value_box.value(), panel.size_box.value()) == (pytest.approx(0.3), 7)
+    assert panel.brush().strength == pytest.approx(0.2)
+    assert window.viewport.brush_size == 7  # the outline follows the map's brush
+
+
 def test_the_painting_shortcuts_people_know(window, qtbot):
     vp = window.viewport
     window.activateWindow()
