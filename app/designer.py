@@ -20,6 +20,7 @@ from PySide6.QtWidgets import (
 
 from app import commands, view_settings
 from app.autosave import INTERVAL_MS, Autosave, default_directory
+from app.history_keys import HistoryKeys
 from app.map_files import MapFileActions
 from app.menus import build_menus, fill_camera_menu
 from app.painting import PaintController
@@ -47,6 +48,8 @@ class DesignerWindow(QMainWindow):
         self.document = document
         self.setWindowTitle(f"Sward — {document.name}[*]")
         self.undo_stack = QUndoStack(self)
+        self._history_keys = HistoryKeys(self)  # Ctrl+Z from a field with nothing to undo
+        QApplication.instance().installEventFilter(self._history_keys)
         self.history_cap = commands.MEMORY_CAP
         self.dialogs = QtDialogs(self)
         settings = self.settings = QSettings("Sward", "Sward")
@@ -380,6 +383,7 @@ class DesignerWindow(QMainWindow):
             event.ignore()
             return
         view_settings.save(self, self.settings)
+        QApplication.instance().removeEventFilter(self._history_keys)
         self._autosave_timer.stop()
         self.autosave.close()
         self.viewport.close_renderer()

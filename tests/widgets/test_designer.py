@@ -568,3 +568,30 @@ def test_a_wind_preset_sets_the_gusts_in_one_undo_step(window, qtbot):
     assert window.document.wind == before and box.currentText() == "gusty"
     panel.root.child("gust_scale").setValue(9.5)  # by hand
     assert window.document.wind.gust_scale == 9.5 and box.currentText() == "(custom)"
+
+
+def test_ctrl_z_in_a_field_with_nothing_to_undo_undoes_the_document(window, qtbot):
+    """Ctrl+Z pressed while a field has the focus reaches the document's history unless the
+    field holds an edit of its own: then that edit is undone first, as a person expects."""
+    from PySide6.QtTest import QTest
+    from PySide6.QtWidgets import QLineEdit
+
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    window.panel.param("density").setValue(0.5)
+    assert window.undo_stack.canUndo() and window.document.density == 0.5
+    field = window.paint_panel.size_box  # a spin box that has nothing to undo
+    window.paint_dock.raise_()
+    field.setFocus()
+    qtbot.waitUntil(field.hasFocus)
+    QTest.keyClick(field, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert window.document.density == 1.0  # the document's edit, undone
+    QTest.keyClick(
+        field, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+    )
+    assert window.document.density == 0.5  # and redone
+    edit = field.findChild(QLineEdit)
+    edit.selectAll()
+    QTest.keyClicks(edit, "30")  # the field's own edit
+    QTest.keyClick(field, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert window.document.density == 0.5  # the field undid its typing, not the document
