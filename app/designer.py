@@ -140,6 +140,7 @@ class DesignerWindow(QMainWindow):
         self.viewport.status_changed.connect(self._on_renderer_status)
         self.viewport.renderer_restarted.connect(self._on_renderer_restarted)
         self.viewport.frame_rendered.connect(self._on_frame)
+        self.viewport.fly.changed.connect(lambda: self._show_status(self.viewport.last_stats))
         self.viewport.quality_ready.connect(self._on_quality)
         for source in (self.viewport, self.map_view):
             source.paint_pressed.connect(self._paint_press)
@@ -317,7 +318,7 @@ class DesignerWindow(QMainWindow):
 
     def _show_status(self, stats) -> None:
         vp = self.viewport
-        text = status_text(stats, self._renderer_status, vp.fly_mode)
+        text = status_text(stats, self._renderer_status, vp.fly.speed if vp.fly.on else None)
         if vp.quality_figures is not None:
             text = quality_text(vp.quality_figures)
         elif vp.quality and not self._renderer_status:

@@ -6,9 +6,10 @@ from __future__ import annotations
 from core.stats import FrameStats
 
 
-def status_text(stats: FrameStats, busy: str = "", fly_mode: bool = False) -> str:
+def status_text(stats: FrameStats, busy: str = "", fly_speed: float | None = None) -> str:
     """Blades, triangles, the cells of each representation and the frame's time (a draft's as
-    a whole); `busy`: what a render process says it is doing."""
+    a whole); `busy`: what a render process says it is doing; `fly_speed`: in fly mode, its
+    speed."""
     if stats.draft:  # a draft is timed as a whole only
         timing = f"draft {stats.t_a_ms:.0f} ms, full quality follows"
     else:
@@ -20,7 +21,11 @@ def status_text(stats: FrameStats, busy: str = "", fly_mode: bool = False) -> st
         (f"{busy} · " if busy else "")
         + f"{stats.blades:,} blades · {stats.triangles:,} triangles · "
         f"cells g/v/i {stats.c_g}/{stats.c_v}/{stats.c_i} · {timing}"
-        + ("  ·  fly mode (WASD, Q/E, F to leave)" if fly_mode else "")
+        + (
+            f"  ·  fly mode, {fly_speed:.3g} units/s (WASD, Q/E; wheel: speed; F to leave)"
+            if fly_speed is not None
+            else ""
+        )
     )
 
 

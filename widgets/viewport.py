@@ -10,10 +10,8 @@ W A S D move and Q E sink and rise.
 
 from __future__ import annotations
 
-from typing import ClassVar
-
 import numpy as np
-from PySide6.QtCore import QPoint, QSocketNotifier, Qt, QTimer, Signal
+from PySide6.QtCore import QPoint, QSocketNotifier, Qt, Signal
 from PySide6.QtGui import QColor, QImage, QPainter
 from PySide6.QtWidgets import QWidget
 
@@ -26,6 +24,7 @@ from core.view_mode import ViewMode
 from core.wind import Wind
 from render import protocol as msg
 from render.render_client import Frame, RenderClient
+from widgets.fly import Fly
 from widgets.qt_clock import QtClock, wait_until
 
 # LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
@@ -49,10 +48,6 @@ class GrassViewport(QWidget):
     paint_moved = Signal(float, float)
     paint_released = Signal()
 
-    FLY_KEYS: ClassVar[frozenset] = frozenset(
-        {Qt.Key.Key_W, Qt.Key.Key_A, Qt.Key.Key_S, Qt.Key.Key_D, Qt.Key.Key_Q, Qt.Key.Key_E}
-    )
-
     def __init__(self, document: Document, parent=None) -> None:
         super().__init__(parent)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
@@ -63,10 +58,8 @@ class GrassViewport(QWidget):
         self._mode = ViewMode.LOD
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
-        self.fly_mode = False
-        self._held: set[int] = set()
-        self._fly_timer = QTimer(self, interval=30)
-        self._fly_timer.timeout.connect(self._fly_step)
+        self.fly = Fly(self)
+        self.fly.set_scene(max(document.terrain_spec.columns, document.terrain_spec.rows))
         self.last_stats = FrameStats()
         self.continuous = False
         self.tool = "camera"  # camera | paint
@@ -119,6 +112,7 @@ class GrassViewport(QWidget):
     # -- the document and the view -------------------------------------------------------------
     def set_document(self, document: Document) -> None:
         """Show another project: the render processes get it whole."""
+        self.fly.set_scene(max(document.terrain_spec.columns, document.terrain_spec.rows))
         self.document.events.wind.disconnect(self._on_wind)
         self.document = document
         document.events.wind.connect(self._on_wind)
@@ -355,41 +349,22 @@ class GrassViewport(QWidget):
 
     def wheelEvent(self, event) -> None:
         steps = event.angleDelta().y() / 120.0
+        if self.fly.on:  # flying, the wheel sets the speed
+            self.fly.wheel(steps)
+            return
         self.camera.zoom(0.88**steps)
         self.camera_changed.emit()
         self.request_frame()
 
     def keyPressEvent(self, event) -> None:
-        key = event.key()
-        if key == Qt.Key.Key_F:
-            self.fly_mode = not self.fly_mode
-            self._held.clear()
-            self._fly_timer.stop()
-        elif self.fly_mode and key in self.FLY_KEYS:
-            if not event.isAutoRepeat():
-                self._held.add(key)
-            if not self._fly_timer.isActive():
-                self._fly_timer.start()
-        else:
+        if event.key() == Qt.Key.Key_F:
+            self.fly.toggle()
+        elif not self.fly.press(event.key(), event.isAutoRepeat()):
             super().keyPressEvent(event)
 
     def keyReleaseEvent(self, event) -> None:
-        if not event.isAutoRepeat():
-            self._held.discard(event.key())
-        if not self._held and self._fly_timer.isActive():
-            self._fly_timer.stop()
+        self.fly.release(event.key(), event.isAutoRepeat())
         super().keyReleaseEvent(event)
-
-    def _fly_step(self) -> None:
-        k = Qt.Key
-        speed = 0.03 * max(self.camera.distance, 1.0)
-        forward = (k.Key_W in self._held) - (k.Key_S in self._held)
-        strafe = (k.Key_D in self._held) - (k.Key_A in self._held)
-        rise = (k.Key_E in self._held) - (k.Key_Q in self._held)
-        if forward or strafe or rise:
-            self.camera.fly(forward * speed, strafe * speed, rise * speed)
-            self.camera_changed.emit()
-            self.request_frame()
 
     def close_renderer(self) -> None:
         """Stop the render processes (the window closes)."""

@@ -10,9 +10,10 @@ def test_a_draft_says_a_full_frame_follows_and_a_full_frame_gives_each_technique
     text = status_text(draft)
     assert "draft 61 ms, full quality follows" in text and "1,200 blades" in text
     assert "cells g/v/i 3/4/5" in text
-    text = status_text(full, busy="converting slices of grass type 1", fly_mode=True)
+    text = status_text(full, busy="converting slices of grass type 1", fly_speed=2.5)
     assert text.startswith("converting slices of grass type 1 · ")
     assert "frame 480 ms (g 45 · v 290 · i 80 ms)" in text and text.endswith("F to leave)")
+    assert "fly mode, 2.5 units/s" in text
 
 
 def test_the_quality_view_names_each_technique_it_measured():

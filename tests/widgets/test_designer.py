@@ -595,3 +595,42 @@ def test_ctrl_z_in_a_field_with_nothing_to_undo_undoes_the_document(window, qtbo
     QTest.keyClicks(edit, "30")  # the field's own edit
     QTest.keyClick(field, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
     assert window.document.density == 0.5  # the field undid its typing, not the document
+
+
+def test_fly_speed_follows_the_scene_and_the_wheel_and_is_shown(window, qtbot):
+    """Half a second of E in fly mode lifts the camera by what the scene's size allows (its
+    longer side crossed in 30 s), not by a share of the distance to the orbit's target; the
+    wheel makes flying faster and the status line says how fast."""
+    from PySide6.QtTest import QTest
+
+    from widgets.fly import CROSSING_S
+
+    vp = window.viewport
+    spec = window.document.terrain_spec
+    speed = max(spec.columns, spec.rows) / CROSSING_S
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    vp.setFocus()
+    QTest.keyClick(vp, Qt.Key.Key_F)
+    assert vp.fly.on and "units/s" in window.status.text()
+    y = vp.camera.eye[1]
+    QTest.keyPress(vp, Qt.Key.Key_E)
+    qtbot.wait(500)
+    QTest.keyRelease(vp, Qt.Key.Key_E)
+    rise = vp.camera.eye[1] - y
+    assert 0.0 < rise <= speed * 0.5 * 1.5
+    from PySide6.QtCore import QPoint, QPointF
+    from PySide6.QtGui import QWheelEvent
+    from PySide6.QtWidgets import QApplication
+
+    centre = QPointF(vp.width() / 2, vp.height() / 2)
+    event = QWheelEvent(centre, vp.mapToGlobal(centre), QPoint(), QPoint(0, 120),
+                        Qt.MouseButton.NoButton, Qt.KeyboardModifier.NoModifier,
+                        Qt.ScrollPhase.NoScrollPhase, False)  # fmt: skip
+    distance = vp.camera.distance
+    QApplication.sendEvent(vp, event)
+    assert vp.fly.speed == pytest.approx(speed * 1.25)
+    assert vp.camera.distance == distance  # flying, the wheel does not zoom
+    assert f"{speed * 1.25:.3g} units/s" in window.status.text()
+    QTest.keyClick(vp, Qt.Key.Key_F)
+    assert not vp.fly.on
