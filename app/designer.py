@@ -110,7 +110,7 @@ class DesignerWindow(QMainWindow):
         self.resizeDocks([self.patch_dock], [380], Qt.Orientation.Horizontal)
 
         self.status = QLabel("starting the renderer …")
-        self.statusBar().addPermanentWidget(self.status, 1)
+        self.statusBar().addWidget(self.status, 1)  # a message (saved, resampled) shows over it
         self._connect()
         self._bind_document(document)
         build_menus(self)
@@ -303,8 +303,7 @@ class DesignerWindow(QMainWindow):
         self.statusBar().showMessage(text, 10000)
 
     def _on_frame(self, stats) -> None:
-        """A frame arrived: the timings of full-quality frames go to the overlay and the
-        Timings dock; a draft only says so in the status line."""
+        """A frame arrived: full frames' timings go to the overlay and the Timings dock."""
         if not stats.draft:
             self.lod_panel.show_counts(stats)
             self.overlay.add(stats)
@@ -312,13 +311,14 @@ class DesignerWindow(QMainWindow):
         self._show_status(stats)
 
     def _on_quality(self, figures: dict) -> None:
-        """The Quality view's figures: how far the frame is from all-geometry, over it and per
-        technique (quarter-resolution FLIP), and what LOD saves."""
+        """The Quality view's figures (quarter-resolution FLIP over the frame and per
+        technique, what LOD saves) in the status line."""
         self._show_status(self.viewport.last_stats)
 
     def _show_status(self, stats) -> None:
         vp = self.viewport
-        text = status_text(stats, self._renderer_status, vp.fly.speed if vp.fly.on else None)
+        fly = vp.fly.speed if vp.fly.on else None
+        text = status_text(stats, self._renderer_status, fly, vp.schedule.wind_on_drafts)
         if vp.quality_figures is not None:
             text = quality_text(vp.quality_figures)
         elif vp.quality and not self._renderer_status:

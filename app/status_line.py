@@ -6,12 +6,19 @@ from __future__ import annotations
 from core.stats import FrameStats
 
 
-def status_text(stats: FrameStats, busy: str = "", fly_speed: float | None = None) -> str:
+def status_text(
+    stats: FrameStats, busy: str = "", fly_speed: float | None = None, wind_on_drafts: bool = False
+) -> str:
     """Blades, triangles, the cells of each representation and the frame's time (a draft's as
     a whole); `busy`: what a render process says it is doing; `fly_speed`: in fly mode, its
-    speed."""
+    speed; `wind_on_drafts`: the wind moves on with drafts, no full frame follows them."""
     if stats.draft:  # a draft is timed as a whole only
-        timing = f"draft {stats.t_a_ms:.0f} ms, full quality follows"
+        follows = (
+            "the wind moves on with drafts (View → Sharp wind frames: full ones)"
+            if wind_on_drafts
+            else "full quality follows"
+        )
+        timing = f"draft {stats.t_a_ms:.0f} ms, {follows}"
     else:
         timing = (
             f"frame {stats.t_a_ms:.0f} ms "

@@ -93,6 +93,12 @@ class FrameSchedule:
         return self._wind_clock is not None
 
     @property
+    def wind_on_drafts(self) -> bool:
+        """True while the wind moves on with drafts alone: full frames are too slow to follow
+        it (and sharp wind frames are off)."""
+        return self.animating and not self.sharp_wind and self._full_ms > 1000.0 * ANIMATION_STEP_S
+
+    @property
     def quality_figures(self) -> dict | None:
         """The Quality view's figures for the frame shown (None until they are drawn)."""
         frame = self.quality_frame
@@ -199,8 +205,11 @@ class FrameSchedule:
         self.on_show(frame)
         # the full frame is shown, or a draft where full frames are too slow to follow the
         # wind: the next moment now
-        slow = not self.sharp_wind and self._full_ms > 1000.0 * ANIMATION_STEP_S
-        if self.animating and frame.version == self.version and (not frame.stats.draft or slow):
+        if (
+            frame.version == self.version
+            and self.animating
+            and (not frame.stats.draft or self.wind_on_drafts)
+        ):
             self._cancel_step()
             self._step = self.clock.call_later(0.0, self._next_moment)
         self._ask_quality()

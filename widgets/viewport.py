@@ -156,7 +156,10 @@ class GrassViewport(QWidget):
     def set_quality(self, on: bool) -> None:
         """The Quality view: the difference against all-geometry over the frame, when at rest."""
         self._heat = None
+        left = self.quality and not on
         self.schedule.set_quality(on)
+        if left:  # its figures and its "drawing the reference" no longer describe the view
+            self.status_changed.emit("")
         self.update()
 
     @property

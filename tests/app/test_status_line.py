@@ -16,6 +16,12 @@ def test_a_draft_says_a_full_frame_follows_and_a_full_frame_gives_each_technique
     assert "fly mode, 2.5 units/s" in text
 
 
+def test_while_drafts_carry_the_wind_no_full_frame_is_promised():
+    draft = FrameStats(t_a_ms=61.4, draft=True)
+    text = status_text(draft, wind_on_drafts=True)
+    assert "full quality follows" not in text and "Sharp wind frames" in text
+
+
 def test_the_quality_view_names_each_technique_it_measured():
     figures = {
         "lod": {"flip_quarter": 0.0412, "block_color": 0.0123},

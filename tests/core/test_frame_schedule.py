@@ -128,8 +128,10 @@ def test_slow_full_frames_let_drafts_carry_the_wind_and_sharp_frames_wait_for_fu
     clock.advance()
     s.arrived(live(1, draft=False, ms=1000.0 * ANIMATION_STEP_S + 400.0))  # a slow renderer
     clock.advance()
+    assert s.wind_on_drafts  # the status line says no full frame follows the drafts
     s.arrived(live(2, draft=True))  # a draft is enough to move on
     s.sharp_wind = True
+    assert not s.wind_on_drafts
     clock.advance()
     assert [a[0] for a in renderer.asked] == [1, 2, 3]
     s.arrived(live(3, draft=True))  # sharp frames: a draft moves nothing

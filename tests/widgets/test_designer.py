@@ -404,6 +404,7 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
     assert vp.wind_time == held
     qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)  # off again
     assert not vp.quality and not window.quality_action.isChecked()
+    assert "quality" not in window.status.text()  # its figures leave with it
     assert vp.animating  # the wind blows on from where it was held
     qtbot.waitUntil(lambda: vp.wind_time > held, timeout=20000)
 

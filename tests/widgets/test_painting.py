@@ -236,7 +236,7 @@ def test_a_broken_map_file_gives_one_message_and_keeps_the_maps(window, tmp_path
     assert window.undo_stack.count() == 0
 
 
-def test_imported_maps_are_resampled_and_undoable_and_export_round_trips(window, tmp_path):
+def test_imported_maps_are_resampled_and_undoable_and_export_round_trips(window, qtbot, tmp_path):
     from PIL import Image
 
     window.paint_panel.select("height")
@@ -245,6 +245,8 @@ def test_imported_maps_are_resampled_and_undoable_and_export_round_trips(window,
     before = window.document.maps.stack.copy()
     assert window.map_files.import_map(tmp_path / "ramp.png")
     assert "resampled" in window.statusBar().currentMessage()
+    # shown where a person sees it: in place of the frame's figures, not squeezed beside them
+    qtbot.waitUntil(lambda: not window.status.isVisible(), timeout=2000)
     height = window.document.maps.layer("height")[..., 0]
     assert height.shape == (256, 256) and np.all(np.diff(height[128, 8:-8]) > 0)
     assert window.map_files.export_map(tmp_path / "out.png")
