@@ -11,6 +11,7 @@ from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
+import widgets.unit_number  # noqa: F401  (registers the unit_float parameter type)
 from core.lighting import Lighting
 
 # (field, title, low, high, step, suffix); colours are edited with colour buttons
@@ -33,8 +34,9 @@ class LightPanel(QWidget):
             {
                 "name": name,
                 "title": title,
-                "type": "float",
-                "limits": (low, high),
+                # typed with or without its unit; a value out of range reaches Lighting, which
+                # refuses it with a message naming the field and its range
+                "type": "unit_float",
                 "step": step,
                 "suffix": suffix,
                 "value": getattr(light, name),
@@ -43,7 +45,7 @@ class LightPanel(QWidget):
                 # one undo step, app/commands.py)
                 "delay": 0.0,
             }
-            for name, title, low, high, step, suffix in NUMBERS
+            for name, title, _low, _high, step, suffix in NUMBERS
         ] + [
             {
                 "name": name,
@@ -82,6 +84,13 @@ class LightPanel(QWidget):
         if self._updating:
             return
         values = {name: float(self.root.child(name).value()) for name, *_ in NUMBERS}
+        for name, title, low, high, _step, suffix in NUMBERS:
+            if not low <= values[name] <= high:
+                self.message.setText(
+                    f"{title} {values[name]:g}{suffix} is out of range; "
+                    f"allowed {low:g} … {high:g}{suffix}"
+                )
+                return
         for name, _ in COLOURS:
             c = self.root.child(name).value()
             values[name] = (c.redF(), c.greenF(), c.blueF())

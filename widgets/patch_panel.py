@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import dataclasses
 
-from pyqtgraph.parametertree import Parameter, ParameterTree, registerParameterType
-from pyqtgraph.parametertree.parameterTypes import NumericParameterItem, SimpleParameter
+from pyqtgraph.parametertree import Parameter, ParameterTree
 from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
+import widgets.unit_number  # noqa: F401  (registers the unit_float parameter type)
 from core.document import Document
 from core.params import (
     PRESETS,
@@ -26,38 +26,7 @@ CUSTOM = "(custom)"
 SIZE_LABELS = {f"{w} × {h}": (w, h) for w, h in SLICE_SIZES}
 
 
-class UnitNumberItem(NumericParameterItem):
-    """A number shown with its unit, typed with or without it ("0.6" or "0.6 patch units").
-    The box has no limits of its own: a value out of range reaches the panel, which refuses it
-    with a message naming the field and its range (a clamped value would hide the mistake)."""
-
-    def makeWidget(self):
-        box = super().makeWidget()
-        unit = box.opts["suffix"].strip()
-        with_unit = box.interpret
-
-        def interpret():
-            text = box.lineEdit().text().strip()
-            if unit and not text.endswith(unit):
-                try:
-                    return float(text.replace(",", "."))
-                except ValueError:
-                    return False
-            return with_unit()
-
-        box.interpret = interpret
-        return box
-
-
-class UnitNumberParameter(SimpleParameter):
-    itemClass = UnitNumberItem
-
-    def _interpretValue(self, v):
-        return float(v)
-
-
 SPEC_NAMES = {f.name for f in dataclasses.fields(PatchParams) if "spec" in f.metadata}
-registerParameterType("unit_float", UnitNumberParameter, override=True)
 
 
 def _slice_children(sp: SliceParams) -> list[dict]:

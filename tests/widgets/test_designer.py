@@ -635,3 +635,23 @@ def test_fly_speed_follows_the_scene_and_the_wheel_and_is_shown(window, qtbot):
     assert f"{speed * 1.25:.3g} units/s" in window.status.text()
     QTest.keyClick(vp, Qt.Key.Key_F)
     assert not vp.fly.on
+
+
+def test_the_light_dock_takes_numbers_with_or_without_their_unit(window, qtbot):
+    """ "45" is 45 degrees of sun elevation, as "45 °" is; a value out of range gets a message
+    naming the field and its range and changes nothing."""
+    panel = window.light_panel
+    window.light_dock.raise_()
+    box = next(
+        item.widget
+        for item in panel.tree.listAllItems()
+        if getattr(item, "param", None) is not None and item.param.name() == "sun_elevation"
+    )
+    type_into(box, "45")
+    qtbot.waitUntil(lambda: window.document.light.sun_elevation == pytest.approx(45.0))
+    type_into(box, "30 °")
+    qtbot.waitUntil(lambda: window.document.light.sun_elevation == pytest.approx(30.0))
+    type_into(box, "95")
+    qtbot.waitUntil(lambda: "Sun elevation" in panel.message.text())
+    assert "0 … 90" in panel.message.text()
+    assert window.document.light.sun_elevation == pytest.approx(30.0)
