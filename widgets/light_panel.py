@@ -19,7 +19,7 @@ NUMBERS = (
     ("sun_elevation", "Sun elevation", 0.0, 90.0, 1.0, " °"),
     ("sun_azimuth", "Sun azimuth", 0.0, 360.0, 5.0, " °"),
     ("translucency", "Translucency", 0.0, 1.0, 0.05, ""),
-    ("blade_ao_impact", "Blade occlusion (B_impact)", 0.0, 1.0, 0.05, ""),
+    ("blade_ao_impact", "Blade occlusion", 0.0, 1.0, 0.05, ""),
     ("fog_distance", "Fog distance", 10.0, 5000.0, 10.0, " units"),
 )
 COLOURS = (("sun_color", "Sun colour"), ("ambient_color", "Ambient colour"))

@@ -55,9 +55,17 @@ def _slice_children(sp: SliceParams) -> list[dict]:
     ]
 
 
+def _in_words(message: str, name: str) -> str:
+    """A refusal as the panel names things: each parameter by its label, not its field."""
+    for field in sorted(SPEC_NAMES, key=len, reverse=True):
+        message = message.replace(field, PatchParams.spec(field).label)
+    label = PatchParams.spec(name).label if name in SPEC_NAMES else name.replace("_", " ")
+    return message if message.startswith(label) else f"{label}: {message}"
+
+
 def _field_param(f: dataclasses.Field, value) -> dict:
     if f.name.endswith("_color"):
-        label = f.name.replace("_", " ").capitalize()
+        label = f.name.replace("_color", " colour").replace("_", " ").capitalize()
         return {"name": f.name, "title": label, "type": "color", "value": QColor.fromRgbF(*value)}
     if f.type in ("bool", bool):
         return {"name": f.name, "title": "Clustered thresholds", "type": "bool", "value": value}
@@ -221,8 +229,7 @@ class PatchPanel(QWidget):
         try:
             params = current.replace(**{name: value})
         except ParameterError as exc:
-            label = PatchParams.spec(name).label if name in SPEC_NAMES else name
-            self.message.setText(f"{label}: {exc}")
+            self.message.setText(_in_words(str(exc), name))
             self._show(current)  # revert the control to the model
             return
         self.message.setText("")

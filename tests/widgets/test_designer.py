@@ -35,7 +35,9 @@ def test_blade_count_edit_regenerates_patch_and_changes_image(window, qtbot):
 
 def test_out_of_range_edit_is_refused_with_message(window, qtbot):
     window.panel.param("length_min").setValue(0.9)  # above length_max
-    assert "length_min" in window.panel.message.text()
+    text = window.panel.message.text()
+    assert "Length min" in text and "Length max" in text  # named as the panel names them
+    assert "length_min" not in text and "length_max" not in text
     assert window.document.params(0).length_min == pytest.approx(0.18)
 
 
