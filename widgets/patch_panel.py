@@ -33,7 +33,11 @@ def _slice_children(sp: SliceParams) -> list[dict]:
     return [
         {
             "name": "slices",
-            "title": "Slices per direction",
+            # the LOD zones dock sets each volume level's own count: this one is what the
+            # Volume only and Compare views draw with
+            "title": "Slices (Volume only, Compare)",
+            "tip": "slices per direction in the Volume only (Ctrl+3) and Compare (Ctrl+5) views; "
+            "each volume zone of the LOD view has its own count in the LOD zones dock",
             "type": "list",
             "limits": list(SLICE_COUNTS),
             "value": sp.slices,

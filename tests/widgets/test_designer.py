@@ -657,3 +657,11 @@ def test_the_light_dock_takes_numbers_with_or_without_their_unit(window, qtbot):
     qtbot.waitUntil(lambda: "Sun elevation" in panel.message.text())
     assert "0 … 90" in panel.message.text()
     assert window.document.light.sun_elevation == pytest.approx(30.0)
+
+
+def test_the_patch_panels_slice_count_says_which_views_it_sets(window):
+    """Two controls of slices: the LOD zones dock's per volume zone, and the Patch panel's,
+    which only the Volume only and Compare views draw with; the panel says so."""
+    param = window.panel.param("slices")
+    assert "Volume only" in param.title() and "Compare" in param.title()
+    assert "LOD zones dock" in param.opts["tip"]
