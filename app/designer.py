@@ -10,7 +10,6 @@ from PySide6.QtGui import QUndoStack
 from PySide6.QtWidgets import (
     QApplication,
     QDockWidget,
-    QFileDialog,
     QInputDialog,
     QLabel,
     QMainWindow,
@@ -335,7 +334,7 @@ class DesignerWindow(QMainWindow):
         choice, ok = QInputDialog.getItem(self, "Save image", "Size", list(sizes), 0, False)
         if not ok:
             return
-        path, _ = QFileDialog.getSaveFileName(self, "Save image", "grass.png", "PNG (*.png)")
+        path = self.dialogs.save_path("Save image", "grass.png", "PNG (*.png)")
         if path:
             self.save_image(path, sizes[choice])
 
@@ -367,8 +366,8 @@ class DesignerWindow(QMainWindow):
         if not frames:
             self.statusBar().showMessage("nothing recorded: no frame was drawn", 5000)
             return
-        path, _ = QFileDialog.getSaveFileName(
-            self, "Save recorded frames", "timings.csv", "CSV (*.csv);;JSON (*.json)"
+        path = self.dialogs.save_path(
+            "Save recorded frames", "timings.csv", "CSV (*.csv);;JSON (*.json)"
         )
         if not path:
             return

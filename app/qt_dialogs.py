@@ -2,25 +2,47 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
+from PySide6.QtCore import QSettings, QStandardPaths
 from PySide6.QtWidgets import QDialog, QFileDialog, QMainWindow, QMessageBox
 
 from app.dialogs import CANCEL, DISCARD, SAVE
 from widgets.raw_dialog import RawHeightDialog
 
 Button = QMessageBox.StandardButton
+FOLDER_KEY = "dialogs/folder"  # the folder the last file was opened or saved in
 
 
 class QtDialogs:
+    """File dialogs open in the folder a file was last opened or saved in (kept in the
+    settings, across runs), at first in the user's documents folder, not wherever the
+    designer was started from."""
+
     def __init__(self, window: QMainWindow) -> None:
         self.window = window
 
-    def save_path(self, title: str, suggested: str, filters: str) -> str | None:
-        path, _ = QFileDialog.getSaveFileName(self.window, title, suggested, filters)
+    @property
+    def folder(self) -> str:
+        documents = QStandardPaths.writableLocation(
+            QStandardPaths.StandardLocation.DocumentsLocation
+        )
+        kept = QSettings("Sward", "Sward").value(FOLDER_KEY, "", type=str)
+        return kept if kept and Path(kept).is_dir() else documents or str(Path.home())
+
+    def _chosen(self, path: str) -> str | None:
+        if path:
+            QSettings("Sward", "Sward").setValue(FOLDER_KEY, str(Path(path).parent))
         return path or None
 
+    def save_path(self, title: str, suggested: str, filters: str) -> str | None:
+        start = str(Path(self.folder) / suggested)
+        return self._chosen(QFileDialog.getSaveFileName(self.window, title, start, filters)[0])
+
     def open_path(self, title: str, filters: str) -> str | None:
-        path, _ = QFileDialog.getOpenFileName(self.window, title, "", filters)
-        return path or None
+        return self._chosen(
+            QFileDialog.getOpenFileName(self.window, title, self.folder, filters)[0]
+        )
 
     def ask_unsaved(self, text: str) -> str:
         answer = QMessageBox.question(

@@ -665,3 +665,34 @@ def test_the_patch_panels_slice_count_says_which_views_it_sets(window):
     param = window.panel.param("slices")
     assert "Volume only" in param.title() and "Compare" in param.title()
     assert "LOD zones dock" in param.opts["tip"]
+
+
+def test_file_dialogs_open_where_the_last_file_went(window, tmp_path, monkeypatch):
+    """The first file dialog opens in the documents folder, not where the designer was
+    started; each next one, in this window or a later one, where the last file was saved or
+    opened."""
+    import os
+
+    from PySide6.QtWidgets import QFileDialog
+
+    asked = []
+    folder = tmp_path / "renders"
+    folder.mkdir()
+
+    def save(parent, title, start, filters):
+        asked.append(start)
+        return str(folder / "grass.png"), filters
+
+    def open_(parent, title, start, filters):
+        asked.append(start)
+        return "", filters
+
+    monkeypatch.setattr(QFileDialog, "getSaveFileName", save)
+    monkeypatch.setattr(QFileDialog, "getOpenFileName", open_)
+    window.dialogs.save_path("Save image", "grass.png", "PNG (*.png)")
+    # in a folder of its own (documents), not relative to where the designer was started
+    assert os.path.isabs(asked[0]) and os.path.dirname(asked[0]) != os.getcwd()
+    window.dialogs.open_path("Open project", "Sward projects (*.sward)")
+    assert asked[1] == str(folder)
+    window.dialogs.save_path("Save recorded frames", "timings.csv", "CSV (*.csv)")
+    assert asked[2] == str(folder / "timings.csv")
