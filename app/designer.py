@@ -61,6 +61,7 @@ class DesignerWindow(QMainWindow):
             lambda: self.fill_recent_menu(),
         )
         self.autosave = Autosave(default_directory(), self.projects, self.undo_stack, self.dialogs)
+        self.projects.titled = lambda name: self.setWindowTitle(f"Sward — {name}[*]")
         self.projects.saved = self.autosave.discard  # recovery never offers work older than it
         self._autosave_timer = QTimer(self, interval=INTERVAL_MS, timeout=self.autosave.save_now)
         self._autosave_timer.start()

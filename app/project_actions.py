@@ -36,6 +36,7 @@ class ProjectActions:
         self.recent_changed = recent_changed
         # after a save: the autosave holds nothing newer than the file any more (app/autosave.py)
         self.saved: Callable[[], None] = lambda: None
+        self.titled: Callable[[str], None] = lambda name: None  # the window shows the file's name
         self.path: Path | None = None
 
     def save(self) -> bool:
@@ -53,6 +54,7 @@ class ProjectActions:
             self.dialogs.warn(str(exc))
             return False
         self.path = path
+        self.titled(path.name)
         self.history.setClean()
         self.saved()
         self._remember(path)
@@ -75,6 +77,7 @@ class ProjectActions:
             return False
         self.open_document(document)
         self.path = path
+        self.titled(path.name)
         self._remember(path)
         return True
 

@@ -696,3 +696,13 @@ def test_file_dialogs_open_where_the_last_file_went(window, tmp_path, monkeypatc
     assert asked[1] == str(folder)
     window.dialogs.save_path("Save recorded frames", "timings.csv", "CSV (*.csv)")
     assert asked[2] == str(folder / "timings.csv")
+
+
+def test_the_title_names_the_project_file(window, tmp_path):
+    """Saved or opened, the window's title is the project file's name, not the scene's."""
+    assert window.projects.save_as(tmp_path / "my meadow.sward")
+    assert "my meadow.sward" in window.windowTitle()
+    window.projects.new(window.document)  # a built-in scene again: its name
+    assert window.document.name in window.windowTitle()
+    assert window.projects.open(tmp_path / "my meadow.sward")
+    assert "my meadow.sward" in window.windowTitle()
