@@ -16,11 +16,11 @@ from core.lighting import Lighting
 
 # (field, title, low, high, step, suffix); colours are edited with colour buttons
 NUMBERS = (
-    ("sun_elevation", "Sun elevation", 0.0, 90.0, 1.0, " °"),
-    ("sun_azimuth", "Sun azimuth", 0.0, 360.0, 5.0, " °"),
+    ("sun_elevation", "Sun elevation", 0.0, 90.0, 1.0, "°"),
+    ("sun_azimuth", "Sun azimuth", 0.0, 360.0, 5.0, "°"),
     ("translucency", "Translucency", 0.0, 1.0, 0.05, ""),
     ("blade_ao_impact", "Blade occlusion", 0.0, 1.0, 0.05, ""),
-    ("fog_distance", "Fog distance", 10.0, 5000.0, 10.0, " units"),
+    ("fog_distance", "Fog distance", 10.0, 5000.0, 10.0, "units"),
 )
 COLOURS = (("sun_color", "Sun colour"), ("ambient_color", "Ambient colour"))
 
@@ -37,6 +37,7 @@ class LightPanel(QWidget):
                 # typed with or without its unit; a value out of range reaches Lighting, which
                 # refuses it with a message naming the field and its range
                 "type": "unit_float",
+                "decimals": 6,  # 1500 reads "1500", not "1.5e+03"
                 "step": step,
                 "suffix": suffix,
                 "value": getattr(light, name),
@@ -86,9 +87,10 @@ class LightPanel(QWidget):
         values = {name: float(self.root.child(name).value()) for name, *_ in NUMBERS}
         for name, title, low, high, _step, suffix in NUMBERS:
             if not low <= values[name] <= high:
+                unit = f" {suffix}" if suffix else ""
                 self.message.setText(
-                    f"{title} {values[name]:g}{suffix} is out of range; "
-                    f"allowed {low:g} … {high:g}{suffix}"
+                    f"{title} {values[name]:g}{unit} is out of range; "
+                    f"allowed {low:g} … {high:g}{unit}"
                 )
                 return
         for name, _ in COLOURS:

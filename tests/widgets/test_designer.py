@@ -706,3 +706,15 @@ def test_the_title_names_the_project_file(window, tmp_path):
     assert window.document.name in window.windowTitle()
     assert window.projects.open(tmp_path / "my meadow.sward")
     assert "my meadow.sward" in window.windowTitle()
+
+
+def test_the_fog_distance_reads_as_a_plain_number(window):
+    """1500 units of fog distance read "1500 units", not "1.5e+03 units"."""
+    panel = window.light_panel
+    panel.root.child("fog_distance").setValue(1500.0)
+    box = next(
+        item.widget
+        for item in panel.tree.listAllItems()
+        if getattr(item, "param", None) is not None and item.param.name() == "fog_distance"
+    )
+    assert box.lineEdit().text().startswith("1500") and "e+" not in box.lineEdit().text()
