@@ -120,7 +120,7 @@ class Autosave:
         self._hold_lock()
         for sward in self._orphans():
             try:
-                meta = json.loads(self._meta(sward).read_text())
+                meta = json.loads(self._meta(sward).read_text(encoding="utf-8"))
             except (OSError, ValueError):
                 meta = {}
             project = Path(meta["project"]) if meta.get("project") else None

@@ -23,7 +23,7 @@ class ShaderError(RuntimeError):
 
 def shader_source(name: str) -> str:
     try:
-        return resources.files("shaders").joinpath(name).read_text()
+        return resources.files("shaders").joinpath(name).read_text(encoding="utf-8")
     except FileNotFoundError as exc:
         raise ShaderError(f"shader file shaders/{name} not found") from exc
 
