@@ -107,6 +107,13 @@ class LodLevel:
 HAND_OVER_BAND = 0.05
 
 
+def _called(index: int, level: LodLevel) -> str:
+    """A level as the LOD dock names it: its representation (a volume level's slices too)
+    and its place, e.g. "volume zone (8 slices, level 2)"."""
+    slices = f"{level.slices} slices, " if level.representation == "volume" else ""
+    return f"{level.representation} zone ({slices}level {index + 1})"
+
+
 @dataclass(frozen=True)
 class LodConfig:
     """Levels ordered by distance. Level i+1 begins before level i ends (or where it ends);
@@ -142,14 +149,17 @@ class LodConfig:
         for i, (a, b) in enumerate(itertools.pairwise(levels)):
             if a.end is None or not a.begin < b.begin <= a.end:
                 raise ValueError(
-                    f"LOD level {i + 2} must begin after level {i + 1} begins and no later than "
-                    "it ends: begins and ends must be increasing"
+                    f"the {_called(i + 1, b)} must begin after the {_called(i, a)} begins and "
+                    "no later than it ends"
                 )
             if b.end is not None and b.end <= a.end:
-                raise ValueError(f"LOD level ends must be increasing (level {i + 2})")
+                raise ValueError(f"the {_called(i + 1, b)} must end after the {_called(i, a)}")
         for i in range(len(levels) - 2):
             if levels[i + 2].begin < levels[i].end:  # type: ignore[operator]
-                raise ValueError(f"LOD levels {i + 1} and {i + 3} overlap: at most two may")
+                raise ValueError(
+                    f"the {_called(i, levels[i])} and the {_called(i + 2, levels[i + 2])} "
+                    "overlap: at most two zones may"
+                )
 
     @classmethod
     def zones(

@@ -81,7 +81,10 @@ def test_thesis_football_levels_are_accepted_and_hand_over_pairwise():
 @pytest.mark.parametrize(
     ("levels", "message"),
     [
-        ((LodLevel("geometry", 0, 5), LodLevel("volume", 6, None)), "begin after level 1"),
+        (
+            (LodLevel("geometry", 0, 5), LodLevel("volume", 6, None)),
+            "begin after the geometry zone",
+        ),
         ((LodLevel("geometry", 1, None),), "begin at distance 0"),
         ((LodLevel("geometry", 0, 5),), "run to the horizon"),
         (

@@ -718,3 +718,16 @@ def test_the_fog_distance_reads_as_a_plain_number(window):
         if getattr(item, "param", None) is not None and item.param.name() == "fog_distance"
     )
     assert box.lineEdit().text().startswith("1500") and "e+" not in box.lineEdit().text()
+
+
+def test_an_impossible_lod_edit_names_the_zones_by_representation(window, qtbot):
+    """The geometry zone ended before the volume zone begins: the refusal names both zones
+    as the dock shows them, not "level 2" and "level 1"."""
+    panel = window.lod_panel
+    window.lod_dock.raise_()
+    before = window.document.lod(0)
+    panel.end_box(0).setValue(0.1)
+    qtbot.waitUntil(lambda: "zone" in panel.message.text())
+    text = panel.message.text()
+    assert "volume zone" in text and "geometry zone" in text
+    assert window.document.lod(0) == before

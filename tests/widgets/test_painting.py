@@ -212,7 +212,7 @@ def test_an_impossible_lod_edit_is_refused_with_the_reason(window, qtbot):
     before = window.document.lod(0)
     panel.end_box(0).setValue(50.0)  # past the volume level's end
     assert window.document.lod(0) == before
-    assert "increasing" in panel.message.text()
+    assert "must end after the geometry zone" in panel.message.text()
     qtbot.waitUntil(lambda: panel.end_box(0).value() == before.levels[0].end)
 
 
