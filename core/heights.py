@@ -94,6 +94,18 @@ def _sample(heights, x0, x1, tx, z0, z1, tz, i, j):
     return top * (1 - tz[j]) + bottom * tz[j]
 
 
+@numba.njit(cache=True, inline="always")
+def _widen(low, high, value, i, cell, x_starts):
+    """A sample on x line i widens the extremes of its cell, and of the cell before it when
+    the line is a border (it bounds the cell it begins and the one it ends)."""
+    for c in (cell, cell - 1):
+        if c == cell or (c >= 0 and i == x_starts[cell]):
+            if value < low[c]:
+                low[c] = value
+            if value > high[c]:
+                high[c] = value
+
+
 @numba.njit(cache=True, parallel=True)
 def _ranges(heights, scale, x0, x1, tx, cell_x, x_starts, z0, z1, tz, z_starts, margin, lo, hi):
     """cell_ranges' pass: per row of cells, every crossing of an x line with that row's z lines
@@ -107,13 +119,7 @@ def _ranges(heights, scale, x0, x1, tx, cell_x, x_starts, z0, z1, tz, z_starts, 
             for i in range(x0.shape[0]):
                 v = np.float32(_sample(heights, x0, x1, tx, z0, z1, tz, i, j) * scale)
                 cx = cell_x[i]
-                for c in (cx, cx - 1):
-                    # a border line bounds the cell it begins and the one before it
-                    if c == cx or (c >= 0 and i == x_starts[cx]):
-                        if v < low[c]:
-                            low[c] = v
-                        if v > high[c]:
-                            high[c] = v
+                _widen(low, high, v, i, cx, x_starts)
         for c in range(columns):
             lo[c, r] = np.float64(low[c]) - margin
             hi[c, r] = np.float64(high[c]) + margin
@@ -328,13 +334,7 @@ def _deviations(
                 near = corners[cx, cz] * (1 - gx) + corners[cx + 1, cz] * gx
                 far = corners[cx, cz + 1] * (1 - gx) + corners[cx + 1, cz + 1] * gx
                 d = sample - (near * (1 - gz) + far * gz)
-                for c in (cx, cx - 1):
-                    # a border line bounds the cell it begins and the one before it
-                    if c == cx or (c >= 0 and i == x_starts[cx]):
-                        if d < low[c]:
-                            low[c] = d
-                        if d > high[c]:
-                            high[c] = d
+                _widen(low, high, d, i, cx, x_starts)
         for c in range(columns):
             lo[c, r] = low[c] - margin
             hi[c, r] = high[c] + margin
