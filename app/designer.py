@@ -13,13 +13,13 @@ from PySide6.QtWidgets import (
     QInputDialog,
     QLabel,
     QMainWindow,
-    QMessageBox,
     QUndoView,
 )
 
 from app import commands, view_settings
 from app.autosave import INTERVAL_MS, Autosave, default_directory
 from app.history_keys import HistoryKeys
+from app.image_output import save_recording
 from app.map_files import MapFileActions
 from app.menus import build_menus, fill_camera_menu
 from app.painting import PaintController
@@ -132,11 +132,15 @@ class DesignerWindow(QMainWindow):
         self.light_panel.light_edited.connect(
             lambda light: self.push(commands.set_light(self.document, light))
         )
+        self.viewport.camera_changed.connect(
+            lambda: self.light_panel.show_view(self.viewport.camera.yaw)
+        )
+        self.light_panel.show_view(self.viewport.camera.yaw)
         self.wind_panel.wind_edited.connect(
             lambda wind: self.push(commands.set_wind(self.document, wind))
         )
         self.profile_panel.continuous_toggled.connect(self.viewport.set_continuous)
-        self.profile_panel.recorded.connect(self._save_recording)
+        self.profile_panel.recorded.connect(lambda frames: save_recording(self, frames))
         self.viewport.status_changed.connect(self._on_renderer_status)
         self.viewport.renderer_restarted.connect(self._on_renderer_restarted)
         self.viewport.frame_rendered.connect(self._on_frame)
@@ -324,60 +328,6 @@ class DesignerWindow(QMainWindow):
         elif vp.quality and not self._renderer_status:
             text = "quality: waiting for the view to rest · " + text
         self.status.setText(text)
-
-    def save_image_dialog(self) -> None:
-        w, h = self.viewport.width(), self.viewport.height()
-        sizes = {
-            f"window size ({w} × {h})": 1,
-            f"2 × ({2 * w} × {2 * h})": 2,
-            f"4 × ({4 * w} × {4 * h})": 4,
-        }
-        choice, ok = QInputDialog.getItem(self, "Save image", "Size", list(sizes), 0, False)
-        if not ok:
-            return
-        path = self.dialogs.save_path("Save image", "grass.png", "PNG (*.png)")
-        if path:
-            self.save_image(path, sizes[choice])
-
-    def save_image(self, path: str, scale: int = 1) -> bool:
-        """Save the view as PNG at the viewport's size times `scale` (drawn anew, not
-        enlarged)."""
-        from PIL import Image
-
-        size = (self.viewport.width() * scale, self.viewport.height() * scale)
-        limit = self.viewport.max_image_size
-        if max(size) > limit:
-            QMessageBox.warning(
-                self, "Sward", f"{size[0]} × {size[1]} is larger than this GPU draws ({limit})"
-            )
-            return False
-        QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
-        try:
-            image = self.viewport.render_image(size)
-            Image.fromarray(image).save(path, format="PNG")
-        except OSError as exc:
-            QMessageBox.warning(self, "Sward", f"cannot write {path}: {exc.strerror or exc}")
-            return False
-        finally:
-            QApplication.restoreOverrideCursor()
-        self.statusBar().showMessage(f"saved {size[0]} × {size[1]} image to {path}", 5000)
-        return True
-
-    def _save_recording(self, frames: list) -> None:
-        if not frames:
-            self.statusBar().showMessage("nothing recorded: no frame was drawn", 5000)
-            return
-        path = self.dialogs.save_path(
-            "Save recorded frames", "timings.csv", "CSV (*.csv);;JSON (*.json)"
-        )
-        if not path:
-            return
-        try:
-            text = self.profile_panel.save(path, frames, scene=self.document.name)
-        except OSError as exc:
-            QMessageBox.warning(self, "Sward", f"cannot write {path}: {exc.strerror or exc}")
-            return
-        self.statusBar().showMessage(text, 5000)
 
     def closeEvent(self, event) -> None:
         if not self.projects.confirm_discard():

@@ -1,6 +1,7 @@
-"""The light panel (thesis 6.4.3): sun elevation and azimuth, sun and ambient colours,
-translucency, how dark the dense grass gets at its roots, and the fog distance — a pyqtgraph
-ParameterTree that shows a Lighting and reports edits as a new one."""
+"""The light panel (thesis 6.4.3): a sun dial to drag the sun by feel, then sun elevation and
+azimuth, sun and ambient colours, translucency, how dark the dense grass gets at its roots, and
+the fog distance as numbers — a pyqtgraph ParameterTree that shows a Lighting and reports edits
+as a new one."""
 
 from __future__ import annotations
 
@@ -13,6 +14,8 @@ from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 import widgets.unit_number  # noqa: F401  (registers the unit_float parameter type)
 from core.lighting import Lighting
+from core.sun_dial import camera_heading
+from widgets.sun_dial import SunDial
 
 # (field, title, low, high, step, suffix); colours are edited with colour buttons
 NUMBERS = (
@@ -61,8 +64,11 @@ class LightPanel(QWidget):
         self.tree.setParameters(self.root, showTop=False)
         self.message = QLabel()
         self.message.setWordWrap(True)
+        self.dial = SunDial(light.sun_elevation, light.sun_azimuth)
+        self.dial.sun_moved.connect(self._on_dial)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.dial)
         layout.addWidget(self.tree)
         layout.addWidget(self.message)
         self.light = light
@@ -72,6 +78,7 @@ class LightPanel(QWidget):
     def show_light(self, light: Lighting) -> None:
         """Model -> widgets (an undo, a newly opened project)."""
         self.light = light
+        self.dial.set_sun(light.sun_elevation, light.sun_azimuth)
         self._updating = True
         try:
             for name, *_ in NUMBERS:
@@ -80,6 +87,16 @@ class LightPanel(QWidget):
                 self.root.child(name).setValue(QColor.fromRgbF(*getattr(light, name)))
         finally:
             self._updating = False
+
+    def show_view(self, yaw: float) -> None:
+        """Turn the dial with the camera: its top is the way the view looks."""
+        self.dial.set_heading(camera_heading(yaw))
+
+    def _on_dial(self, elevation: float, azimuth: float) -> None:
+        """A drag or arrow key on the dial: both numbers change, one edit goes out."""
+        with self.root.treeChangeBlocker():
+            self.root.child("sun_elevation").setValue(elevation)
+            self.root.child("sun_azimuth").setValue(azimuth)
 
     def _on_tree_changed(self, *_) -> None:
         if self._updating:

@@ -237,9 +237,11 @@ def test_each_designer_has_its_own_autosave_and_a_save_removes_it(
 def test_an_image_larger_than_the_window_is_drawn_at_that_size(window, qtbot, tmp_path):
     from PIL import Image
 
+    from app.image_output import save_image
+
     wait_for_slices(window, qtbot)
     path = tmp_path / "big.png"
-    assert window.save_image(str(path), scale=2)
+    assert save_image(window, str(path), scale=2)
     vp = window.viewport
     with Image.open(path) as image:
         assert image.size == (2 * vp.width(), 2 * vp.height())
