@@ -67,11 +67,13 @@ class SetValue(Command):
         merge_id: int = -1,
         index: int | None = None,
         at: float | None = None,
+        gesture: int | None = None,
     ) -> None:
         super().__init__(text)
         self.document, self.name, self.index = document, name, index
         self.old, self.new, self.merge_id = old, new, merge_id
         self.at = monotonic() if at is None else at  # when its last edit came
+        self.gesture = gesture  # one drag (press to release): merged however slow
 
     def _set(self, value) -> None:
         if self.index is None:
@@ -95,7 +97,8 @@ class SetValue(Command):
             self.index,
         ):
             return False
-        if other.at - self.at > MERGE_S:
+        same_drag = other.gesture is not None and other.gesture == self.gesture
+        if other.at - self.at > MERGE_S and not same_drag:
             return False
         self.new, self.at = other.new, other.at
         return True
@@ -110,6 +113,7 @@ class SetValue(Command):
             self.merge_id,
             self.index,
             self.at,
+            self.gesture,
         )
 
 
@@ -157,8 +161,9 @@ def set_slices(doc: Document, new: SliceParams) -> SetValue:
     return SetValue("change slices", doc, "slices", doc.slices, new)
 
 
-def set_light(doc: Document, new: Lighting) -> SetValue:
-    return SetValue("change light", doc, "light", doc.light, new, merge_id=2)
+def set_light(doc: Document, new: Lighting, gesture: int | None = None) -> SetValue:
+    """A light edit; those of one drag of the sun dial (`gesture`) are one undo step."""
+    return SetValue("change light", doc, "light", doc.light, new, merge_id=2, gesture=gesture)
 
 
 def set_wind(doc: Document, new: Wind) -> SetValue:

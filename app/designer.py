@@ -130,7 +130,9 @@ class DesignerWindow(QMainWindow):
         )
         self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
         self.light_panel.light_edited.connect(
-            lambda light: self.push(commands.set_light(self.document, light))
+            lambda light: self.push(
+                commands.set_light(self.document, light, self.light_panel.dial.drag)
+            )
         )
         self.viewport.camera_changed.connect(
             lambda: self.light_panel.show_view(self.viewport.camera.yaw)

@@ -20,6 +20,8 @@ class SunDial(QWidget):
         super().__init__(parent)
         self.elevation, self.azimuth = elevation, azimuth
         self.heading = 0.0  # azimuth the view looks along
+        self.drag: int | None = None  # which drag the moves belong to, while the button is down
+        self._drags = 0
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
         self.setMinimumSize(150, 150 + TEXT_H)
         self.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
@@ -66,11 +68,17 @@ class SunDial(QWidget):
     # -- input -----------------------------------------------------------------------------
     def mousePressEvent(self, event) -> None:
         if event.button() == Qt.MouseButton.LeftButton:
+            self._drags += 1
+            self.drag = self._drags
             self._move_to(event.position())
 
     def mouseMoveEvent(self, event) -> None:
         if event.buttons() & Qt.MouseButton.LeftButton:
             self._move_to(event.position())
+
+    def mouseReleaseEvent(self, event) -> None:
+        if event.button() == Qt.MouseButton.LeftButton:
+            self.drag = None
 
     def keyPressEvent(self, event) -> None:
         steps = {

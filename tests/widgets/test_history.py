@@ -74,3 +74,31 @@ def test_a_drag_is_one_undo_step_and_edits_after_a_pause_are_their_own(qapp):
     assert doc.light.sun_elevation == start + 3.0
     stack.undo()
     assert doc.light.sun_elevation == start
+
+
+def test_a_slow_drag_of_the_sun_dial_is_still_one_undo_step(qapp):
+    """Moves of one sun-dial drag merge however long the person pauses on the way; the next
+    drag, even at once, is a step of its own."""
+    import dataclasses
+
+    from app.commands import MERGE_S, set_light
+    from app.scenes import get_scene
+
+    doc = get_scene("patch-grid").document()
+    stack = QUndoStack()
+    start = doc.light.sun_azimuth
+
+    def edit(azimuth: float, at: float, drag: int) -> None:
+        command = set_light(doc, dataclasses.replace(doc.light, sun_azimuth=azimuth), drag)
+        command.at = at
+        stack.push(command)
+
+    edit(start + 10.0, 100.0, drag=1)
+    edit(start + 20.0, 100.0 + 5.0 * MERGE_S, drag=1)  # a long look, then on
+    assert stack.count() == 1
+    edit(start + 30.0, 100.0 + 10.0 * MERGE_S, drag=2)  # pressed again, later: a new step
+    assert stack.count() == 2
+    stack.undo()
+    assert doc.light.sun_azimuth == start + 20.0
+    stack.undo()
+    assert doc.light.sun_azimuth == start
