@@ -12,6 +12,19 @@ import numpy as np
 from core.stats import FrameStats
 
 COLUMNS = ("fps", "t_a", "t_q", "t_g", "t_v", "t_i", "t_m", "c_g", "c_v", "c_i")
+# what each column of the overlay means, beside its figures (the thesis's names are short)
+MEANING = {
+    "fps": "frames a second",
+    "t_a": "ms, whole frame",
+    "t_q": "ms, LOD selection",
+    "t_g": "ms, geometry",
+    "t_v": "ms, volume",
+    "t_i": "ms, image-based",
+    "t_m": "ms, ground and props",
+    "c_g": "geometry instances",
+    "c_v": "volume instances",
+    "c_i": "image-based instances",
+}
 # The parts (t_q + t_u + t_g + t_v + t_i + t_m + t_o) must lie within this fraction of t_a, plus a
 # small fixed allowance for the Python between the measured passes.
 SUM_TOLERANCE = 0.10
@@ -105,7 +118,8 @@ def overlay_text(frames: list[FrameStats]) -> str:
     for column in COLUMNS:
         avg, lo, hi = stats[column]
         fmt = "{:8.0f}" if column.startswith("c_") else "{:8.1f}"
-        lines.append(f"{column:4s}" + "".join(fmt.format(v) for v in (avg, lo, hi)))
+        figures = "".join(fmt.format(v) for v in (avg, lo, hi))
+        lines.append(f"{column:4s}{figures}   {MEANING[column]}")
     return "\n".join(lines)
 
 

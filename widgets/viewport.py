@@ -24,6 +24,7 @@ from core.view_mode import ViewMode
 from core.wind import Wind
 from render import protocol as msg
 from render.render_client import Frame, RenderClient
+from widgets import view_legends
 from widgets.fly import Fly
 from widgets.qt_clock import QtClock, wait_until
 
@@ -250,11 +251,20 @@ class GrassViewport(QWidget):
         else:
             painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform)
             painter.drawImage(self.rect(), self._image)
-            if self.quality and self.quality_figures is not None and self._heat is not None:
+            if self.heat_shown:
                 painter.setOpacity(0.7)
                 painter.drawImage(self.rect(), self._heat)
                 painter.setOpacity(1.0)
+            view_legends.paint(painter, self.rect(), self.legends(), ZONE_COLORS)
         painter.end()
+
+    heat_shown = property(
+        lambda self: self.quality and self.quality_figures is not None and self._heat is not None
+    )
+
+    def legends(self) -> list[view_legends.Legend]:
+        """What the colours over the frame mean (Compare's columns, zone rings, heat map)."""
+        return view_legends.legends(self._mode, self.show_zones, self.heat_shown)
 
     def resizeEvent(self, event) -> None:
         super().resizeEvent(event)

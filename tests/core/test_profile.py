@@ -52,7 +52,8 @@ def test_the_live_overlay_averages_the_frames_it_holds():
     assert stats["t_a"] == (30.0, 10.0, 60.0) and stats["c_g"] == (5.0, 3.0, 7.0)
     text = overlay_text(frames)
     row = next(line for line in text.splitlines() if line.startswith("t_g"))
-    assert [float(v) for v in row.split()[1:]] == [15.0, 5.0, 30.0]
+    assert [float(v) for v in row.split()[1:4]] == [15.0, 5.0, 30.0]
+    assert row.endswith("ms, geometry")  # each row says what it counts
     assert "last 3 frames" in text
     rows = frames_csv(frames).splitlines()
     assert len(rows) == 4 and rows[2].split(",")[1] == "20.0"
