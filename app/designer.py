@@ -10,9 +10,10 @@ from PySide6.QtGui import QUndoStack
 from PySide6.QtWidgets import (
     QApplication,
     QDockWidget,
-    QInputDialog,
+    QFrame,
     QLabel,
     QMainWindow,
+    QScrollArea,
     QUndoView,
 )
 
@@ -87,11 +88,11 @@ class DesignerWindow(QMainWindow):
         self.patch_dock.setMinimumWidth(330)
         self.lod_panel = LodPanel(document)
         self.light_panel = LightPanel(document.light)
-        self.light_dock = self._dock("Light", self.light_panel, "light-dock")
+        self.light_dock = self._dock("Light", self.light_panel, "light-dock", scroll=True)
         self.wind_panel = WindPanel(document.wind)
-        self.wind_dock = self._dock("Wind", self.wind_panel, "wind-dock")
-        self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock")
-        self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock")
+        self.wind_dock = self._dock("Wind", self.wind_panel, "wind-dock", scroll=True)
+        self.paint_dock = self._dock("Paint", self.paint_panel, "paint-dock", scroll=True)
+        self.lod_dock = self._dock("LOD zones", self.lod_panel, "lod-dock", scroll=True)
         self.overlay = ProfileOverlay(self.viewport)
         self.profile_panel = ProfilePanel()
         self.profile_dock = self._dock("Timings", self.profile_panel, "profile-dock")
@@ -108,6 +109,8 @@ class DesignerWindow(QMainWindow):
         self.history_dock.raise_()
         self.patch_dock.raise_()
         self.resizeDocks([self.patch_dock], [380], Qt.Orientation.Horizontal)
+        # the panels above, the Map (as wide as the docks), history and timings below
+        self.resizeDocks([self.patch_dock, self.map_dock], [60, 40], Qt.Orientation.Vertical)
 
         self.status = QLabel("starting the renderer …")
         self.statusBar().addWidget(self.status, 1)  # a message (saved, resampled) shows over it
@@ -167,9 +170,17 @@ class DesignerWindow(QMainWindow):
         document.events.wind.disconnect(self.wind_panel.show_wind)
         document.events.cameras.disconnect(self._on_cameras_changed)
 
-    def _dock(self, title: str, widget, name: str) -> QDockWidget:
+    def _dock(self, title: str, widget, name: str, scroll: bool = False) -> QDockWidget:
+        """A dock on the right; a panel of fields scrolls when its dock is made short (so the
+        docks below, the Map's among them, can take the height)."""
         dock = QDockWidget(title, self)
         dock.setObjectName(name)
+        if scroll:
+            area = QScrollArea()
+            area.setWidgetResizable(True)
+            area.setFrameShape(QFrame.Shape.NoFrame)
+            area.setWidget(widget)
+            widget = area
         dock.setWidget(widget)
         self.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, dock)
         return dock
@@ -207,8 +218,8 @@ class DesignerWindow(QMainWindow):
     def bookmark_view(self, name: str | None = None) -> bool:
         """Keep the current view as a named camera of the project (saved with it)."""
         if name is None:
-            name, ok = QInputDialog.getText(self, "Bookmark this view", "Name")
-            if not ok:
+            name = self.dialogs.ask_text("Bookmark this view", "Name (View → Cameras lists it)")
+            if name is None:
                 return False
         name = name.strip()
         if not name:

@@ -29,6 +29,10 @@ class Dialogs(Protocol):
 
     def status(self, text: str, ms: int = 5000) -> None: ...
 
+    def ask_text(self, title: str, label: str) -> str | None:
+        """One line of text, or None when the person cancelled."""
+        ...
+
     def raw_height_options(self, name: str, size: int) -> dict | None:
         """Width, height, byte order and range of a raw height file, or None (cancelled)."""
         ...

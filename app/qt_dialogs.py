@@ -5,12 +5,21 @@ from __future__ import annotations
 from pathlib import Path
 
 from PySide6.QtCore import QSettings, QStandardPaths
-from PySide6.QtWidgets import QDialog, QFileDialog, QMainWindow, QMessageBox
+from PySide6.QtWidgets import (
+    QDialog,
+    QDialogButtonBox,
+    QFileDialog,
+    QFormLayout,
+    QLineEdit,
+    QMainWindow,
+    QMessageBox,
+)
 
 from app.dialogs import CANCEL, DISCARD, SAVE
 from widgets.raw_dialog import RawHeightDialog
 
 Button = QMessageBox.StandardButton
+DialogButton = QDialogButtonBox.StandardButton
 FOLDER_KEY = "dialogs/folder"  # the folder the last file was opened or saved in
 
 
@@ -59,6 +68,24 @@ class QtDialogs:
 
     def status(self, text: str, ms: int = 5000) -> None:
         self.window.statusBar().showMessage(text, ms)
+
+    def ask_text(self, title: str, label: str) -> str | None:
+        """One line of text, or None if cancelled; the dialog is wide enough for its title
+        (a window manager cuts a title wider than the window)."""
+        # QInputDialog sets its own minimum width when shown: a plain dialog keeps ours
+        dialog = QDialog(self.window)
+        dialog.setWindowTitle(title)
+        field = QLineEdit()
+        buttons = QDialogButtonBox(DialogButton.Ok | DialogButton.Cancel)
+        buttons.accepted.connect(dialog.accept)
+        buttons.rejected.connect(dialog.reject)
+        layout = QFormLayout(dialog)
+        layout.addRow(label, field)
+        layout.addRow(buttons)
+        dialog.setMinimumWidth(max(dialog.fontMetrics().horizontalAdvance(title) + 160, 360))
+        if dialog.exec() != QDialog.DialogCode.Accepted:
+            return None
+        return field.text()
 
     def raw_height_options(self, name: str, size: int) -> dict | None:
         dialog = RawHeightDialog(name, size, self.window)

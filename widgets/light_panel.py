@@ -12,10 +12,10 @@ from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
-import widgets.unit_number  # noqa: F401  (registers the unit_float parameter type)
 from core.lighting import Lighting
 from core.sun_dial import camera_heading
 from widgets.sun_dial import SunDial
+from widgets.unit_number import fit_names, report_bad_text  # and registers the unit_float type
 
 # (field, title, low, high, step, suffix); colours are edited with colour buttons
 NUMBERS = (
@@ -62,6 +62,7 @@ class LightPanel(QWidget):
         self.root = Parameter.create(name="light", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)
         self.tree.setParameters(self.root, showTop=False)
+        fit_names(self.tree)
         self.message = QLabel()
         self.message.setWordWrap(True)
         self.dial = SunDial(light.sun_elevation, light.sun_azimuth)
@@ -71,6 +72,7 @@ class LightPanel(QWidget):
         layout.addWidget(self.dial)
         layout.addWidget(self.tree)
         layout.addWidget(self.message)
+        report_bad_text(self.tree, self.message)
         self.light = light
         self._updating = False
         self.root.sigTreeStateChanged.connect(self._on_tree_changed)

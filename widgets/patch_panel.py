@@ -10,7 +10,6 @@ from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
-import widgets.unit_number  # noqa: F401  (registers the unit_float parameter type)
 from core.document import Document
 from core.params import (
     PRESETS,
@@ -21,6 +20,7 @@ from core.params import (
     PatchParams,
     SliceParams,
 )
+from widgets.unit_number import fit_names, report_bad_text  # and registers the unit_float type
 
 CUSTOM = "(custom)"
 SIZE_LABELS = {f"{w} × {h}": (w, h) for w, h in SLICE_SIZES}
@@ -35,7 +35,7 @@ def _slice_children(sp: SliceParams) -> list[dict]:
             "name": "slices",
             # the LOD zones dock sets each volume level's own count: this one is what the
             # Volume only and Compare views draw with
-            "title": "Slices (Volume only, Compare)",
+            "title": "Slices (Volume, Compare)",
             "tip": "slices per direction in the Volume only (Ctrl+3) and Compare (Ctrl+5) views; "
             "each volume zone of the LOD view has its own count in the LOD zones dock",
             "type": "list",
@@ -137,6 +137,7 @@ class PatchPanel(QWidget):
         self.root = Parameter.create(name="patch", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)
         self.tree.setParameters(self.root, showTop=False)
+        fit_names(self.tree)
         self.message = QLabel("")
         self.message.setWordWrap(True)
         self.message.setStyleSheet("color: #b03020")
@@ -144,6 +145,7 @@ class PatchPanel(QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.tree)
         layout.addWidget(self.message)
+        report_bad_text(self.tree, self.message)
         self._updating = False
         self.root.sigTreeStateChanged.connect(self._on_tree_changed)
         self._connect(document)

@@ -13,7 +13,15 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QFont
-from PySide6.QtWidgets import QCheckBox, QHBoxLayout, QLabel, QPushButton, QVBoxLayout, QWidget
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSizePolicy,
+    QVBoxLayout,
+    QWidget,
+)
 
 from core.profile import WINDOW, frames_csv, frames_json, overlay_text
 from core.stats import FrameStats
@@ -86,6 +94,8 @@ class ProfilePanel(QWidget):
         self.record_button.setCheckable(True)
         self.record_button.toggled.connect(self._on_record)
         self.label = QLabel()
+        # "recording: 12345 frames" must not widen the dock: the label takes the room left
+        self.label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
         row = QHBoxLayout()
         row.addWidget(self.continuous_box)
         row.addWidget(self.record_button)

@@ -20,6 +20,7 @@ from PySide6.QtWidgets import (
 )
 
 from core.wind import PRESETS, RANGES, Wind, preset_of
+from widgets.unit_number import fit_names, report_bad_text
 
 # (field, title, step, suffix); the limits are core/wind.py's
 NUMBERS = (
@@ -74,6 +75,7 @@ class WindPanel(QWidget):
         self.root = Parameter.create(name="wind", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)
         self.tree.setParameters(self.root, showTop=False)
+        fit_names(self.tree)
         self.message = QLabel()
         self.message.setWordWrap(True)
         dial_row = QHBoxLayout()
@@ -89,6 +91,7 @@ class WindPanel(QWidget):
         layout.addLayout(preset_row)
         layout.addWidget(self.tree)
         layout.addWidget(self.message)
+        report_bad_text(self.tree, self.message)
         self.wind = wind
         self._updating = False
         self.show_wind(wind)

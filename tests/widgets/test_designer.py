@@ -338,6 +338,22 @@ def test_a_number_typed_without_its_unit_is_taken_in_that_unit(window, qtbot):
     assert window.panel.message.text() == ""
 
 
+def test_text_that_is_no_number_gets_a_message_naming_the_field(window, qtbot):
+    """ "abc" in a number field: a message names the field (not only a red border), nothing
+    changes, and the message goes once a number is typed."""
+    before = window.document.params(0)
+    for name, title in (("length_max", "Length max"), ("density", "Global density")):
+        box = spin_box(window, name)
+        type_into(box, "abc")
+        message = window.panel.message.text()
+        assert title in message and "“abc” is not a number" in message
+        assert window.document.params(0) == before and not window.undo_stack.canUndo()
+    box = spin_box(window, "density")
+    type_into(box, "0.5")
+    qtbot.waitUntil(lambda: window.document.density == pytest.approx(0.5))
+    assert window.panel.message.text() == ""
+
+
 def test_an_out_of_range_value_is_refused_with_the_field_and_its_range(window, qtbot):
     box = spin_box(window, "length_max")
     before = window.document.params(0)
@@ -395,6 +411,7 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
 
     shown, before = image(vp.grab().toImage()), image(plain)
     assert np.abs(shown - before).mean() > 10  # the heat map lies over the frame
+    assert [legend.kind for legend in vp.legends()] == ["heat"]  # and its scale says what counts
     # the wind starts blowing: the Quality view holds it at its moment, so the reference of the
     # new view is drawn (each next moment would give it up)
     window.wind_action.trigger()
@@ -409,6 +426,7 @@ def test_the_quality_view_shows_the_difference_against_all_geometry(window, qtbo
     qtbot.keyClick(vp, Qt.Key.Key_6, Qt.KeyboardModifier.ControlModifier)  # off again
     assert not vp.quality and not window.quality_action.isChecked()
     assert "quality" not in window.status.text()  # its figures leave with it
+    assert vp.legends() == []
     assert vp.animating  # the wind blows on from where it was held
     qtbot.waitUntil(lambda: vp.wind_time > held, timeout=20000)
 
@@ -665,7 +683,7 @@ def test_the_patch_panels_slice_count_says_which_views_it_sets(window):
     """Two controls of slices: the LOD zones dock's per volume zone, and the Patch panel's,
     which only the Volume only and Compare views draw with; the panel says so."""
     param = window.panel.param("slices")
-    assert "Volume only" in param.title() and "Compare" in param.title()
+    assert "Volume" in param.title() and "Compare" in param.title()
     assert "LOD zones dock" in param.opts["tip"]
 
 

@@ -56,3 +56,22 @@ def test_the_dial_turns_with_the_view_and_steps_with_the_arrow_keys(window, qtbo
     assert window.document.light.sun_elevation == sun[0] + 1.0
     QTest.keyClick(dial, Qt.Key.Key_Left)
     assert window.document.light.sun_azimuth == (sun[1] + 5.0) % 360.0
+
+
+def test_text_that_is_no_number_in_the_light_dock_gets_a_message(window, qtbot):
+    from tests.widgets.test_designer import type_into
+
+    panel = window.light_panel
+    window.light_dock.raise_()
+    box = next(
+        item.widget
+        for item in panel.tree.listAllItems()
+        if getattr(item, "param", None) is not None and item.param.name() == "sun_azimuth"
+    )
+    type_into(box, "north")
+    assert "Sun azimuth: “north” is not a number" in panel.message.text()
+    assert "°" in panel.message.text()  # it may be typed with its unit
+    assert window.document.light.sun_azimuth == 135.0
+    type_into(box, "90")
+    qtbot.waitUntil(lambda: window.document.light.sun_azimuth == pytest.approx(90.0))
+    assert panel.message.text() == ""
