@@ -90,3 +90,36 @@ def test_a_rock_is_not_a_box(headless):
     assert fill(box) > 0.9 and fill(rock) < 0.85
     luma = [images[s][0][images[s][1]].astype(float).mean(axis=-1) for s in ("box", "rock")]
     assert luma[1].std() > 2 * luma[0].std()  # light and dark within the rock, flat on a face
+
+
+def test_a_rock_stands_on_ground_raised_under_it_in_the_drawn_frame(headless):
+    """A height stroke under a rock, then the terrain rebuilt (as the designer does after a
+    stroke): the frame of the renderer that followed the edit shows the rock standing on the
+    mound, as a renderer started on the edited document draws it, not buried at its old
+    height."""
+    meadow = get_scene("meadow")
+    doc = meadow.document()
+    doc.density = 0.0  # the rock and the ground alone
+    renderer = headless(doc)
+    spec = doc.terrain_spec
+    (x, z) = doc.props[0].position
+    column, row = (np.array([x, z]) / [spec.columns, spec.rows] + 0.5) * doc.maps.size
+    doc.maps.write("height", int(column) - 10, int(row) - 10, np.ones((20, 20, 1), np.float32))
+    doc.rebuild_terrain()
+    centre = doc.prop_boxes()["centre"][0]
+    size = doc.prop_boxes()["size"][0]
+    eye = (centre[0], centre[1] + 0.4 * size[1], centre[2] + 4.0 * size[2])
+    camera = Camera.from_eye_target(eye, tuple(centre))
+    followed, _ = renderer.render(camera, SIZE)
+    fresh_doc = meadow.document()
+    fresh_doc.density = 0.0
+    fresh_doc.maps.write("height", 0, 0, doc.maps.layer("height").copy())
+    fresh_doc.rebuild_terrain()
+    fresh, _ = headless(fresh_doc).render(camera, SIZE)
+
+    def rock(image):  # grey: the rock; the ground is brown or green, the sky blue
+        rgb = image.astype(int)
+        return (rgb.max(axis=-1) - rgb.min(axis=-1) < 14) & (rgb.max(axis=-1) > 40)
+
+    assert rock(fresh).mean() > 0.05  # the rock fills a good part of the view
+    assert (rock(followed) == rock(fresh)).mean() > 0.99
