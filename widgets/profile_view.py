@@ -148,4 +148,4 @@ class ProfilePanel(QWidget):
         path = Path(path)
         text = frames_csv(frames) if path.suffix.lower() == ".csv" else frames_json(frames, **about)
         path.write_text(text)
-        return f"wrote {len(frames)} frames to {path}"
+        return f"wrote {len(frames)} frame{'' if len(frames) == 1 else 's'} to {path}"
