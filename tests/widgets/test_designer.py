@@ -503,6 +503,31 @@ def test_sharp_wind_frames_draw_each_moment_at_full_quality(window, qtbot):
     window.set_wind_blowing(False)
 
 
+def test_while_the_wind_moves_on_drafts_the_status_line_says_so(window, qtbot):
+    """On a scene whose full frames are slower than the wind's step the wind moves on with
+    drafts: the status line says so (and where sharp frames are), not "full quality follows"
+    frame after frame; the wind stopped, the full frame follows again."""
+    from app.scenes import get_scene
+    from tests.widgets.conftest import wait_full
+
+    window.open_document(get_scene("meadow").document())
+    wait_full(window)
+    vp = window.viewport
+    if vp.last_stats.t_a_ms < 500:
+        pytest.skip("full frames here keep up with the wind: no drafts to speak of")
+    window.wind_action.trigger()
+    qtbot.waitUntil(lambda: vp.schedule.wind_on_drafts, timeout=30000)
+    for _ in range(3):  # the drafts that follow each other as the wind blows
+        with qtbot.waitSignal(vp.frame_rendered, timeout=30000) as drawn:
+            pass
+        if drawn.args[0].draft:
+            assert "Sharp wind frames" in window.status.text()
+            assert "full quality follows" not in window.status.text()
+    window.wind_action.trigger()
+    wait_full(window)
+    assert "draft" not in window.status.text()
+
+
 def test_the_window_layout_and_view_preferences_are_kept_for_the_next_start(window, qtbot):
     """Closed and opened again, the designer has the size, the docks and the View menu's
     display preferences it was left with (QSettings); the project's own state is not among
