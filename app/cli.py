@@ -134,6 +134,66 @@ def _sweep(args: argparse.Namespace) -> int:
     return 1 if result["failed"] else 0  # a guard: a check over its limit fails the run
 
 
+def cmd_tune(args: argparse.Namespace) -> int:
+    from app.tune import tune
+
+    document = document_of(args)
+    for name in args.camera or []:
+        known_camera(document, name)
+    known_path(document, args.path)
+    if args.path is not None and args.camera:
+        raise CliError("give --camera or --path, not both")
+    if not 2 <= args.frames <= 100:
+        raise CliError(f"--frames {args.frames} out of range; allowed 2 … 100")
+    if args.budget_ms is not None and not 0 < args.budget_ms <= 1e6:
+        raise CliError(f"--budget-ms {args.budget_ms:g} out of range; above 0")
+    if args.quality is not None and not 0 < args.quality < 1:
+        raise CliError(f"--quality {args.quality:g} out of range; a FLIP above 0, below 1")
+    if not 1 <= args.candidates <= 10_000:
+        raise CliError(f"--candidates {args.candidates} out of range; allowed 1 … 10000")
+    if args.apply and args.project is None:
+        raise CliError("--apply writes into a project file: give --project FILE")
+    out_folder(args.out, "tune.json")
+    if args.path is not None:
+        views = [
+            (f"{args.path} {i + 1}", c)
+            for i, c in enumerate(document.path_cameras(args.path, args.frames))
+        ]
+    else:
+        views = [(n, document.camera(n)) for n in args.camera or [document.default_camera]]
+    text, result = tune(
+        document,
+        args.size,
+        views,
+        args.path,
+        args.budget_ms,
+        args.quality,
+        args.out,
+        max_candidates=args.candidates,
+    )
+    print(text)
+    if args.apply:
+        _apply_tuned(args.project, document, result)
+    return 0
+
+
+def _apply_tuned(path: Path, document, result: dict) -> None:
+    """The chosen levels into the project file (one edit: the file is written once)."""
+    from core.project_file import ProjectError, save_project
+    from core.tuning import Knobs, tuned
+
+    if result["chosen"] is None:
+        print(f"{path} left as it was: nothing tried meets the target")
+        return
+    knobs = Knobs(**result["candidates"][result["chosen"]]["knobs"])
+    document.set_lods([tuned(lod, knobs) for lod in document.lods])  # type: ignore[misc]
+    try:
+        save_project(path, document)
+    except ProjectError as exc:
+        raise CliError(str(exc)) from None
+    print(f"wrote the chosen LOD setting into {path}")
+
+
 def cmd_scenes(_: argparse.Namespace) -> int:
     from app.scenes import SCENES
 
@@ -231,6 +291,7 @@ def main(argv: list[str] | None = None) -> int:
         "info": cmd_info,
         "bench": cmd_bench,
         "quality": cmd_quality,
+        "tune": cmd_tune,
     }[args.command]
     name = f"sward {args.command}" if args.command else "sward"
     try:

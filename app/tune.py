@@ -1,0 +1,434 @@
+"""`sward tune`: search the LOD settings for the front of frame cost against quality (thesis
+ch. 8's adaptive rendering, as an assistant): within a frame budget the best quality, or for a
+quality target the cheapest frame. core/tuning.py has the knobs, the front and the choice.
+
+Quality: quarter-resolution FLIP of each candidate's frame against all-geometry at each camera
+(or path frame), over the frame and over each technique region of the shipped setting's frame,
+and popping along a path. The references are drawn once per camera and kept on disk
+(render/reference_cache.py).
+
+Cost: the median of FRAMES measured frames per camera (after one unmeasured frame, in which a
+new slice count converts), averaged over the cameras. A CPU renderer's speed drifts by some
+percent over minutes, so the chosen setting and the shipped one are measured again at the end,
+in turns (VERIFY_ROUNDS each), and those medians are what the verdict compares."""
+
+from __future__ import annotations
+
+import json
+import statistics
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from core.camera import Camera
+from core.document import Document
+from core.image_diff import QUARTER, flip
+from core.quality import popping, quarter_mask, technique_regions
+from core.tuning import (
+    SHIPPED,
+    Candidate,
+    Knobs,
+    as_good_as_shipped,
+    choose,
+    first_candidates,
+    front,
+    nearest_miss,
+    proposals,
+    ranked,
+    tuned,
+)
+
+FRAMES = 3  # measured frames per camera and candidate
+VERIFY_ROUNDS = 5
+VERIFY_AT_MOST = 4  # candidates measured again in turns for one claim
+NOISE = 1.1  # the search's times may be this far off: candidates up to it are measured again
+MAX_CANDIDATES = 150
+TIME_LIMIT_S = 12 * 60.0  # the search stops proposing after this long
+
+
+class TuneRun:
+    """One renderer on one context; the references and the shipped setting's regions."""
+
+    def __init__(
+        self,
+        document: Document,
+        size: tuple[int, int],
+        views: list[tuple[str, Camera]],
+        path: bool,
+        say: Callable[[str], None],
+    ) -> None:
+        from render.context import standalone
+        from render.headless import HeadlessRenderer
+
+        self.document, self.size, self.views, self.path, self.say = (
+            document,
+            size,
+            views,
+            path,
+            say,
+        )
+        self.ctx = standalone()
+        self.renderer = HeadlessRenderer(document, self.ctx)
+        self.shipped = document.lods
+        self.references: list[np.ndarray] = []
+        self.masks: list[dict[str, np.ndarray]] = []
+        self.reused = 0
+
+    def release(self) -> None:
+        self.document.set_lods(self.shipped)
+        self.renderer.release()
+        self.ctx.release()
+
+    # -- what every candidate is compared with -------------------------------------------------
+    def prepare(self) -> None:
+        from core.view_mode import ViewMode
+        from render import reference_cache
+        from render.comparison import drawn_as
+        from render.grass_type import technique_colors
+
+        pipeline = self.renderer.pipeline
+        for i, (name, camera) in enumerate(self.views):
+            key = reference_cache.key(self.document, camera, self.size, pipeline.time)
+            image = reference_cache.load(key, self.size)
+            if image is None:
+                self.say(
+                    f"drawing the all-geometry reference of {name} ({i + 1}/{len(self.views)})"
+                )
+                with drawn_as(pipeline, ViewMode.GEOMETRY):
+                    image, _ = self.renderer.render(camera, self.size, measure=False)
+                reference_cache.save(key, image)
+            else:
+                self.reused += 1
+            self.references.append(image)
+            shaded, _ = self.renderer.render(camera, self.size, measure=False)
+            with drawn_as(pipeline, view="techniques"):
+                techniques, _ = self.renderer.render(camera, self.size, measure=False)
+            regions = technique_regions(shaded, techniques, technique_colors())
+            self.masks.append({n: quarter_mask(m) for n, m in regions.items() if m.any()})
+
+    # -- one candidate ---------------------------------------------------------------------------
+    def frames(self, knobs: Knobs, frames: int) -> tuple[list[float], list[np.ndarray], dict]:
+        """Frame times (ms, a median per camera) and the last image of each camera."""
+        lods = [tuned(lod, knobs) for lod in self.shipped]
+        self.document.set_lods(lods)  # type: ignore[arg-type]
+        costs, images, counts = [], [], {"c_g": 0, "c_v": 0, "c_i": 0, "triangles": 0}
+        for _name, camera in self.views:
+            self.renderer.render(camera, self.size, measure=False)  # new slices convert here
+            times = []
+            for _ in range(1 if self.path else frames):
+                image, stats = self.renderer.render(camera, self.size, measure=True)
+                times.append(stats.t_a_ms)
+            costs.append(statistics.median(times))
+            images.append(image)
+            for k in counts:
+                counts[k] += getattr(stats, k)
+        return costs, images, counts
+
+    def evaluate(self, knobs: Knobs) -> Candidate | None:
+        if any(tuned(lod, knobs) is None for lod in self.shipped):
+            return None
+        costs, images, counts = self.frames(knobs, FRAMES)
+        flips, regions = [], {}
+        for image, reference, masks in zip(images, self.references, self.masks, strict=True):
+            mean, error = flip(reference, image, QUARTER)
+            error = error.reshape(error.shape[0], error.shape[1])
+            flips.append(mean)
+            for name, mask in masks.items():
+                regions.setdefault(name, []).append(
+                    float(error[mask[: error.shape[0], : error.shape[1]]].mean())
+                )
+        cost = statistics.median(costs) if self.path else float(np.mean(costs))
+        pops = popping(images, self.references)["popping"] if self.path else None
+        return Candidate(
+            knobs,
+            cost,
+            float(np.mean(flips)),
+            {n: float(np.mean(v)) for n, v in regions.items()},
+            pops,
+            {k: v // len(self.views) for k, v in counts.items()},
+        )
+
+    def in_turns(self, a: Knobs, b: Knobs, rounds: int) -> tuple[float, float]:
+        """Both settings' frame times measured in turns: the medians (ms)."""
+        times: dict[Knobs, list[float]] = {a: [], b: []}
+        for _ in range(rounds):
+            for k in (a, b):
+                costs, _, _ = self.frames(k, 1)
+                times[k].append(float(np.mean(costs)))
+        return statistics.median(times[a]), statistics.median(times[b])
+
+
+def tune(
+    document: Document,
+    size: tuple[int, int],
+    views: list[tuple[str, Camera]],
+    path: str | None,
+    budget_ms: float | None,
+    quality: float | None,
+    out: Path | None,
+    max_candidates: int = MAX_CANDIDATES,
+    time_limit_s: float = TIME_LIMIT_S,
+    say: Callable[[str], None] | None = None,
+) -> tuple[str, dict]:
+    """Search; the printed report and the JSON document. Ctrl+C stops the search and keeps
+    what it found."""
+    say = say or (lambda text: print(text, file=sys.stderr, flush=True))
+    started = time.monotonic()
+    run = TuneRun(document, size, views, path is not None, say)
+    candidates: list[Candidate] = []
+    seen: set[Knobs] = set()
+    stopped = ""
+    try:
+        run.prepare()
+        shipped = run.evaluate(SHIPPED)
+        assert shipped is not None
+        candidates.append(shipped)
+        seen.add(SHIPPED)
+        if budget_ms is None and quality is None:
+            budget_ms = shipped.cost_ms
+        say(
+            f"shipped setting: {shipped.cost_ms:.0f} ms, FLIP {shipped.flip:.4f}"
+            + (f", popping {shipped.popping:.2f}" if shipped.popping is not None else "")
+        )
+        queue = [k for k in first_candidates() if k not in seen]
+        try:
+            while queue and len(seen) < max_candidates:
+                if time.monotonic() - started > time_limit_s:
+                    stopped = f"time limit {time_limit_s:.0f} s"
+                    break
+                knobs = queue.pop(0)
+                seen.add(knobs)
+                found = run.evaluate(knobs)
+                if found is not None:
+                    candidates.append(found)
+                    say(
+                        f"[{len(seen)}/{max_candidates}] {knobs.label()}: "
+                        f"{found.cost_ms:.0f} ms, FLIP {found.flip:.4f}"
+                    )
+                if not queue:
+                    target = choose(candidates, budget_ms, quality) or nearest_miss(
+                        candidates, budget_ms, quality
+                    )
+                    queue = proposals(candidates, seen, target)
+        except KeyboardInterrupt:
+            stopped = "stopped (Ctrl+C)"
+            say("stopped: keeping what was found")
+        result = _result(run, document, size, views, path, budget_ms, quality, candidates, shipped)
+        result["stopped"] = stopped or ("no more proposals" if not queue else "candidate limit")
+    finally:
+        run.release()
+    result["elapsed_s"] = time.monotonic() - started
+    text = report(result)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "tune.json").write_text(json.dumps(result, indent=2) + "\n")
+        plot_front(result, out / "front.png")
+        text += f"\nwrote {out / 'tune.json'} and {out / 'front.png'}"
+    return text, result
+
+
+def _result(run, document, size, views, path, budget_ms, quality, candidates, shipped) -> dict:
+    checks = Checks(run, shipped, budget_ms)
+    chosen = _chosen(candidates, budget_ms, quality, checks)
+    result: dict = {
+        "scene": document.name,
+        "size": list(size),
+        "views": [name for name, _ in views],
+        "path": path,
+        "budget_ms": budget_ms,
+        "quality": quality,
+        "references_reused": run.reused,
+        "references_drawn": len(views) - run.reused,
+        "shipped": shipped.to_dict(),
+        "candidates": [c.to_dict() for c in candidates],
+        "front": [candidates.index(c) for c in front(candidates)],
+        "chosen": None if chosen is None else candidates.index(chosen),
+    }
+    if budget_ms is not None:
+        better = next(
+            (
+                c
+                for c in as_good_as_shipped(candidates, shipped, budget_ms * NOISE)[:VERIFY_AT_MOST]
+                if checks.holds(c)
+            ),
+            None,
+        )
+        result["better_than_shipped"] = None if better is None else candidates.index(better)
+        if better is None:
+            cheaper = [c for c in candidates if c.cost_ms < shipped.cost_ms]
+            result["verdict"] = (
+                f"the shipped setting is on the front: none of the {len(cheaper)} cheaper "
+                "settings tried is as good in the frame and every region"
+                + (" (or measured in turns, costs no more)" if checks.done else "")
+            )
+    index = {c.knobs: i for i, c in enumerate(candidates)}
+    result["verified"] = [{"candidate": index[k], **v} for k, v in checks.done.items()]
+    if chosen is not None:
+        lods = [tuned(lod, chosen.knobs) for lod in run.shipped]
+        result["chosen_lods"] = [_levels(lod) for lod in lods]
+    return result
+
+
+class Checks:
+    """Candidates measured again in turns with the shipped setting: a candidate holds the
+    budget when its median is within the budget as the machine runs now (the budget scaled by
+    how the shipped setting's time moved since the search measured it)."""
+
+    def __init__(self, run: TuneRun, shipped: Candidate, budget_ms: float | None) -> None:
+        self.run, self.shipped, self.budget_ms = run, shipped, budget_ms
+        self.done: dict[Knobs, dict] = {}
+
+    def holds(self, c: Candidate) -> bool:
+        if c.knobs == SHIPPED:
+            return self.budget_ms is None or c.cost_ms <= self.budget_ms
+        if c.knobs not in self.done:
+            shipped_ms, ms = self.run.in_turns(SHIPPED, c.knobs, VERIFY_ROUNDS)
+            allowed = (self.budget_ms or c.cost_ms) * shipped_ms / self.shipped.cost_ms
+            self.done[c.knobs] = {
+                "shipped_ms": shipped_ms,
+                "ms": ms,
+                "allowed_ms": allowed,
+                "rounds": VERIFY_ROUNDS,
+                "holds": ms <= allowed,
+            }
+            self.run.say(
+                f"measured in turns: {c.knobs.label()} {ms:.0f} ms, shipped {shipped_ms:.0f} "
+                f"ms, allowed {allowed:.0f} ms"
+            )
+        return self.done[c.knobs]["holds"]
+
+
+def _chosen(candidates, budget_ms, quality, checks: Checks) -> Candidate | None:
+    """For a quality: the cheapest that reaches it. For a budget: the best whose time holds
+    the budget measured again in turns (the first VERIFY_AT_MOST tried); when none does, the
+    best by the search's figures (its entry in "verified" says so)."""
+    if budget_ms is None:
+        return choose(candidates, quality=quality)
+    pool = ranked(candidates, budget_ms * NOISE)
+    for c in pool[:VERIFY_AT_MOST]:
+        if checks.holds(c):
+            return c
+    return choose(candidates, budget_ms)
+
+
+def _levels(config) -> list[dict]:
+    return [
+        {
+            "representation": lv.representation,
+            "begin": round(lv.begin, 4),
+            "end": None if lv.end is None else round(lv.end, 4),
+            "slices": lv.slices,
+            "macro": lv.macro,
+        }
+        for lv in config.levels
+    ]
+
+
+def _figures(c: dict) -> str:
+    regions = ", ".join(f"{n} {v:.4f}" for n, v in c["regions"].items())
+    pops = f", popping {c['popping']:.2f}" if c.get("popping") is not None else ""
+    return f"{c['cost_ms']:.0f} ms, FLIP {c['flip_quarter']:.4f} ({regions}){pops}"
+
+
+def report(result: dict) -> str:
+    w, h = result["size"]
+    target = (
+        f"budget {result['budget_ms']:.0f} ms"
+        if result["budget_ms"] is not None
+        else f"quality FLIP ≤ {result['quality']:g}"
+    )
+    cands = result["candidates"]
+    lines = [
+        f"{result['scene']} at {w}x{h}, {', '.join(result['views'])}: {target}; "
+        f"{len(cands)} settings tried ({result.get('stopped', '')}), "
+        f"references {result['references_drawn']} drawn, {result['references_reused']} reused",
+        f"  shipped: {_figures(result['shipped'])}",
+    ]
+    if result["chosen"] is None:
+        lines.append("  nothing tried meets the target")
+    else:
+        c = cands[result["chosen"]]
+        lines.append(f"  chosen:  {_figures(c)}  [{Knobs(**c['knobs']).label()}]")
+    for v in result.get("verified", []):
+        c = cands[v["candidate"]]
+        lines.append(
+            f"  measured in turns ({v['rounds']} rounds): {Knobs(**c['knobs']).label()} "
+            f"{v['ms']:.0f} ms against shipped {v['shipped_ms']:.0f} ms, allowed "
+            f"{v['allowed_ms']:.0f} ms: {'holds' if v['holds'] else 'over'}"
+        )
+    better = result.get("better_than_shipped")
+    if better is not None:
+        lines.append(
+            f"  as good as shipped in the frame and every region, at no more cost: "
+            f"{_figures(cands[better])}  [{Knobs(**cands[better]['knobs']).label()}]"
+        )
+    if result.get("verdict"):
+        lines.append(f"  {result['verdict']}")
+    lines.append(f"  front: {len(result['front'])} settings; {result['elapsed_s']:.0f} s")
+    return "\n".join(lines)
+
+
+def plot_front(result: dict, path: Path) -> None:
+    """Cost against FLIP, every candidate grey, the front joined, the shipped setting red and
+    the chosen one green; the budget as a dashed line. Drawn with Pillow: the headless
+    commands import no Qt, so no pyqtgraph here."""
+    from PIL import Image, ImageDraw, ImageFont
+
+    font = ImageFont.load_default(size=13)
+    cands = result["candidates"]
+    w, h, m = 640, 420, 60
+    xs = [c["cost_ms"] for c in cands]
+    ys = [c["flip_quarter"] for c in cands]
+    x0, x1 = min(xs) * 0.95, max(xs) * 1.05
+    y0, y1 = min(ys) * 0.95, max(ys) * 1.05
+    if result["budget_ms"] is not None:
+        x0, x1 = min(x0, result["budget_ms"] * 0.95), max(x1, result["budget_ms"] * 1.05)
+
+    def at(x: float, y: float) -> tuple[float, float]:
+        return (
+            m + (x - x0) / max(x1 - x0, 1e-9) * (w - 1.5 * m),
+            h - m - (y - y0) / max(y1 - y0, 1e-9) * (h - 1.7 * m),
+        )
+
+    image = Image.new("RGB", (w, h), "white")
+    d = ImageDraw.Draw(image)
+    d.line([at(x0, y0), at(x1, y0)], fill="black")
+    d.line([at(x0, y0), at(x0, y1)], fill="black")
+    for k in range(5):
+        x, y = x0 + (x1 - x0) * k / 4, y0 + (y1 - y0) * k / 4
+        px, _ = at(x, y0)
+        _, py = at(x0, y)
+        d.text((px - 12, h - m + 6), f"{x:.0f}", fill="black", font=font)
+        d.text((4, py - 6), f"{y:.3f}", fill="black", font=font)
+    d.text((w / 2 - 60, h - 22), "frame cost (ms)", fill="black", font=font)
+    d.text(
+        (4, 8),
+        "FLIP against all-geometry (quarter resolution; lower is better)",
+        fill="black",
+        font=font,
+    )
+    if result["budget_ms"] is not None:
+        bx, _ = at(result["budget_ms"], y0)
+        for y in range(int(at(x0, y1)[1]), int(at(x0, y0)[1]), 8):
+            d.line([(bx, y), (bx, y + 4)], fill=(120, 120, 120))
+        d.text((bx + 4, at(x0, y1)[1]), "budget", fill=(90, 90, 90), font=font)
+    for c in cands:
+        px, py = at(c["cost_ms"], c["flip_quarter"])
+        d.ellipse([px - 3, py - 3, px + 3, py + 3], fill=(170, 170, 170))
+    line = [at(cands[i]["cost_ms"], cands[i]["flip_quarter"]) for i in result["front"]]
+    if len(line) > 1:
+        d.line(line, fill=(40, 90, 200), width=2)
+    for i in result["front"]:
+        px, py = at(cands[i]["cost_ms"], cands[i]["flip_quarter"])
+        d.ellipse([px - 4, py - 4, px + 4, py + 4], fill=(40, 90, 200))
+    marks = [(0, (220, 40, 30), "shipped")]
+    if result["chosen"] is not None and result["chosen"] != 0:
+        marks.append((result["chosen"], (20, 160, 60), "chosen"))
+    for i, colour, label in marks:
+        px, py = at(cands[i]["cost_ms"], cands[i]["flip_quarter"])
+        d.ellipse([px - 7, py - 7, px + 7, py + 7], outline=colour, width=3)
+        d.text((px + 9, py - 14), label, fill=colour, font=font)
+    image.save(path, format="PNG")

@@ -1,0 +1,111 @@
+"""All-geometry reference frames kept on disk (`sward tune`, `sward quality`): a reference
+takes seconds to minutes on a CPU renderer and depends only on what the grass looks like —
+the document without its LOD settings, the camera, the size and the wind's moment — so a
+second run finds it. Kept beside the derived sums (render/derived_cache.py), in references/,
+as PNG, the newest up to MAX_BYTES; the file name carries a digest of the code that draws
+(core/, render/, shaders/), so a reference drawn by other code is never read."""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import os
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+import core
+import render
+import shaders
+from core.camera import Camera
+from core.document import Document
+from render import derived_cache
+
+MAX_BYTES = 128 * 2**20
+_SKIP = ("lod", "name", "description", "cameras", "default_camera", "paths")
+
+
+@lru_cache(maxsize=1)
+def _code() -> str:
+    digest = hashlib.blake2b(digest_size=8)
+    for package in (core, render, shaders):
+        base = Path(package.__file__).parent
+        for source in sorted([*base.glob("*.py"), *base.glob("*.glsl")]):
+            digest.update(source.name.encode())
+            digest.update(source.read_bytes())
+    return digest.hexdigest()
+
+
+def key(document: Document, camera: Camera, size: tuple[int, int], time: float) -> str:
+    """A digest of everything the reference frame depends on."""
+    from core.project_file import document_data
+
+    data = document_data(document)
+    for name in _SKIP:
+        data.pop(name, None)
+    for kind in data.get("grass", []):
+        kind.pop("lod", None)
+    digest = hashlib.blake2b(digest_size=16)
+    digest.update(json.dumps(data, sort_keys=True, default=str).encode())
+    digest.update(np.ascontiguousarray(document.maps.stack).tobytes())
+    view = (tuple(camera.eye), tuple(camera.target), camera.fov_y, camera.near, camera.far)
+    digest.update(repr((view, tuple(size), float(time))).encode())
+    return digest.hexdigest()
+
+
+def _path(name: str) -> Path | None:
+    base = derived_cache.folder()
+    if base is None:
+        return None
+    folder = base / "references"
+    try:
+        folder.mkdir(exist_ok=True)
+    except OSError:
+        return None
+    return folder / f"geometry-{_code()}-{name}.png"
+
+
+def load(name: str, size: tuple[int, int]) -> np.ndarray | None:
+    """The reference kept under `name` as (h, w, 3) uint8, or None."""
+    from PIL import Image
+
+    path = _path(name)
+    if path is None or not path.is_file():
+        return None
+    try:
+        with Image.open(path, formats=["PNG"]) as image:
+            if image.size != tuple(size) or image.mode != "RGB":
+                return None
+            return np.asarray(image).copy()
+    except (OSError, ValueError):  # not whole, not an image
+        return None
+
+
+def save(name: str, image: np.ndarray) -> None:
+    from PIL import Image
+
+    path = _path(name)
+    if path is None:
+        return
+    partial = path.with_name(f".{path.name}.{os.getpid()}")
+    try:
+        Image.fromarray(image).save(partial, format="PNG")
+        os.replace(partial, path)
+        _prune(path.parent)
+    except OSError:
+        partial.unlink(missing_ok=True)
+
+
+def _prune(folder: Path) -> None:
+    files = []
+    for p in folder.glob("geometry-*.png"):
+        with contextlib.suppress(OSError):
+            st = p.stat()
+            files.append((st.st_mtime, st.st_size, p))
+    total = 0
+    for _mtime, size, p in sorted(files, key=lambda f: f[0], reverse=True):
+        total += size
+        if total > MAX_BYTES:
+            p.unlink(missing_ok=True)
