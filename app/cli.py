@@ -76,6 +76,16 @@ def cmd_profile(args: argparse.Namespace) -> int:
         raise CliError(f"--frames {frames} out of range; allowed 1 … 10000")
     if args.out is not None:
         writable(args.out)
+    if args.hold_ms is not None:
+        if args.path is None:
+            raise CliError("--hold-ms follows a camera path: give --path NAME")
+        if not 0 < args.hold_ms <= 1e6:
+            raise CliError(f"--hold-ms {args.hold_ms:g} out of range; above 0")
+        from app.hold import hold
+
+        text, _ = hold(document, args.size, args.path, frames, args.hold_ms, args.out)
+        print(text)
+        return 0
     text, _ = profile(document, args.size, frames, args.path, args.out, args.only)
     print(text)
     return 0

@@ -219,6 +219,13 @@ def parser() -> argparse.ArgumentParser:
         type=Path,
         help="JSON file for every frame and the summaries, or .csv: a row per frame",
     )
+    pr.add_argument(
+        "--hold-ms",
+        type=float,
+        metavar="T",
+        help="adaptive LOD along --path: one factor on every zone's distances holds the frame "
+        "time at T ms; reports how well it held and popping",
+    )
 
     n = sub.add_parser(
         "new",
@@ -273,7 +280,9 @@ def _tune_options(t: argparse.ArgumentParser) -> None:
     )
     target.add_argument("--quality", type=float, help="quarter-resolution FLIP to reach")
     t.add_argument("--size", type=_size, default=(480, 270), help="image size WxH")
-    t.add_argument("--candidates", type=int, default=60, help="settings to try at most")
+    t.add_argument(
+        "--candidates", type=int, default=150, help="settings to try at most (default 150)"
+    )
     t.add_argument("--out", type=Path, help="folder for tune.json and front.png")
     t.add_argument(
         "--apply", action="store_true", help="write the chosen setting into --project's file"

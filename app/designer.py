@@ -340,7 +340,28 @@ class DesignerWindow(QMainWindow):
             text = quality_text(vp.quality_figures)
         elif vp.quality and not self._renderer_status:
             text = "quality: waiting for the view to rest · " + text
-        self.status.setText(text)
+        held = vp.zone_scale.describe()
+        self.status.setText(f"{text}  ·  {held}" if held else text)
+
+    def hold_frame_rate(self, on: bool) -> None:
+        """View → Hold frame rate…: ask for the frame time to hold (the last full frame's to
+        begin with); adaptive LOD scales every zone's distances to keep it."""
+        target = None
+        if on:
+            last = self.viewport.last_stats.t_a_ms
+            target = self.dialogs.ask_number(
+                "Hold frame rate",
+                "Full-quality frame time to hold",
+                last or 100.0,
+                1.0,
+                60000.0,
+                " ms",
+            )
+            if target is None:
+                self.hold_action.setChecked(False)  # comes back here with on = False
+                return
+        self.viewport.zone_scale.set_target(target)
+        self._show_status(self.viewport.last_stats)
 
     def closeEvent(self, event) -> None:
         if not self.projects.confirm_discard():

@@ -33,6 +33,12 @@ class Dialogs(Protocol):
         """One line of text, or None when the person cancelled."""
         ...
 
+    def ask_number(
+        self, title: str, label: str, value: float, low: float, high: float, unit: str = ""
+    ) -> float | None:
+        """A number in low … high, or None when the person cancelled."""
+        ...
+
     def raw_height_options(self, name: str, size: int) -> dict | None:
         """Width, height, byte order and range of a raw height file, or None (cancelled)."""
         ...

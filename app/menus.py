@@ -114,6 +114,14 @@ def _view_toggles(w, view) -> None:
         "difference shown as a heat map, with its figures in the status line"
     )
     view.addAction(w.quality_action)
+    w.hold_action = _action(
+        w, "&Hold frame rate…", "Ctrl+Shift+R", w.hold_frame_rate, checkable=True
+    )
+    w.hold_action.setToolTip(
+        "adaptive LOD: one factor on every zone's distances keeps the full-quality frame time at "
+        "a target; the status line shows the factor"
+    )
+    view.addAction(w.hold_action)
     w.wind_action = _action(w, "&Wind blows", "Ctrl+Shift+W", w.set_wind_blowing, checkable=True)
     w.wind_action.setToolTip("animate the grass in the project's wind (the Wind dock sets it)")
     w.wind_action.setChecked(w.document.wind.enabled)

@@ -10,6 +10,7 @@ from PySide6.QtWidgets import (
     QDialogButtonBox,
     QFileDialog,
     QFormLayout,
+    QInputDialog,
     QLineEdit,
     QMainWindow,
     QMessageBox,
@@ -86,6 +87,15 @@ class QtDialogs:
         if dialog.exec() != QDialog.DialogCode.Accepted:
             return None
         return field.text()
+
+    def ask_number(
+        self, title: str, label: str, value: float, low: float, high: float, unit: str = ""
+    ) -> float | None:
+        """A number in low … high, or None if cancelled."""
+        number, ok = QInputDialog.getDouble(
+            self.window, title, f"{label} ({low:g} … {high:g}{unit})", value, low, high, 1
+        )
+        return number if ok else None
 
     def raw_height_options(self, name: str, size: int) -> dict | None:
         dialog = RawHeightDialog(name, size, self.window)

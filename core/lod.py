@@ -204,18 +204,26 @@ class LodConfig:
     def for_view(self, viewport_height: float, fov_y: float) -> LodConfig:
         """The levels with world-unit distances for this view (`view_scale`); macro-cell
         limits, slices and unplanarity stay as they are."""
-        scale = self.view_scale(viewport_height, fov_y)
-        if scale == 1.0:
+        if self.view_height is None:
+            return self
+        return dataclasses.replace(
+            self.scaled(self.view_scale(viewport_height, fov_y)), view_height=None
+        )
+
+    def scaled(self, factor: float) -> LodConfig:
+        """Every level's begin and end times `factor` (adaptive LOD's one factor, a view's
+        scale); macro-cell limits, slices and unplanarity stay as they are."""
+        if factor == 1.0:
             return self
         levels = tuple(
             dataclasses.replace(
                 level,
-                begin=level.begin * scale,
-                end=None if level.end is None else level.end * scale,
+                begin=level.begin * factor,
+                end=None if level.end is None else level.end * factor,
             )
             for level in self.levels
         )
-        return dataclasses.replace(self, levels=levels, view_height=None)
+        return dataclasses.replace(self, levels=levels)
 
     def with_blade_reach(self, reach: float) -> LodConfig:
         """The hand-over from the blades moved out (the wind's `blade_reach`): the level after

@@ -80,6 +80,7 @@ class FramePipeline:
         self.tiling = TilingNoise(ctx)  # the terrain's mirror bits per cell, for macro-cells
         self.wind = Wind()  # the document's (render/binding.py)
         self.time = 0.0  # seconds: the moment of the wind a frame draws
+        self.lod_scale = 1.0  # every zone's distances times this (adaptive LOD, core/hold.py)
         self.wind_noise = WindNoise(ctx)
         self.culling = True
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
@@ -355,7 +356,9 @@ class FramePipeline:
         cells = [
             draw_list(
                 mode,
-                grass.lod.for_view(h, camera.fov_y).with_blade_reach(self.wind.reach),
+                grass.lod.for_view(h, camera.fov_y)
+                .scaled(self.lod_scale)
+                .with_blade_reach(self.wind.reach),
                 camera.eye,
                 self.terrain,
                 self._instances,

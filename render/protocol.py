@@ -62,6 +62,11 @@ class SetOverlay:
 
 
 @dataclass(frozen=True)
+class SetLodScale:
+    factor: float  # every zone's distances times this (adaptive LOD, core/hold.py)
+
+
+@dataclass(frozen=True)
 class SetContinuous:
     on: bool  # full frames one after another (profiling)
 

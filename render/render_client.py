@@ -253,7 +253,8 @@ class RenderClient:
 
     # -- view state and frames ---------------------------------------------------------------
     def set_view_state(
-        self, message: msg.SetMode | msg.SetView | msg.SetOverlay | msg.SetContinuous
+        self,
+        message: msg.SetMode | msg.SetView | msg.SetOverlay | msg.SetContinuous | msg.SetLodScale,
     ) -> None:
         """How frames are drawn, kept for a restarted process (an overlay per group)."""
         key = (type(message), getattr(message, "group", None))

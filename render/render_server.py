@@ -105,6 +105,8 @@ class RenderServer:
                 self.pipeline.view = view
             case msg.SetOverlay(group, lines):
                 self.pipeline.overlay.set_lines(group, lines)
+            case msg.SetLodScale(factor):
+                self.pipeline.lod_scale = float(factor)
             case msg.SetContinuous(on):
                 self.continuous = bool(on) and self.role == FULL
             case msg.FrameRequest():
@@ -145,6 +147,7 @@ class RenderServer:
             "needs_slices": p.needs_slices,
             "light": p.light,
             "wind": p.wind,
+            "lod_scale": p.lod_scale,
             "patch_params": [g.patch.params if g.patch else None for g in p.grass_types],
             "height_scale": terrain.height_scale if terrain is not None else 0.0,
             "terrain_top": float(terrain.cell_max.max()) if terrain is not None else 0.0,

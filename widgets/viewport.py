@@ -27,6 +27,7 @@ from render.render_client import Frame, RenderClient
 from widgets import view_legends
 from widgets.fly import Fly
 from widgets.qt_clock import QtClock, wait_until
+from widgets.zone_scale import ZoneScale
 
 # LOD zone rings (thesis Figs. 7.1-7.6 colours): geometry red, volume yellow, image-based blue
 ZONE_COLORS = {
@@ -60,6 +61,7 @@ class GrassViewport(QWidget):
         self._drag: QPoint | None = None
         self._button = Qt.MouseButton.NoButton
         self.fly = Fly(self)
+        self.zone_scale = ZoneScale(self)  # adaptive LOD's factor on every zone's distances
         self.fly.set_scene(max(document.terrain_spec.columns, document.terrain_spec.rows))
         self.last_stats = FrameStats()
         self.continuous = False
@@ -179,7 +181,7 @@ class GrassViewport(QWidget):
     def _zone_rings(self) -> None:
         if self.show_zones:
             lod = self.document.lod(0).for_view(self._size()[1], self.camera.fov_y)
-            lod = lod.with_blade_reach(self.document.wind.reach)
+            lod = lod.scaled(self.zone_scale.factor).with_blade_reach(self.document.wind.reach)
             rings = zone_rings(self.document.terrain, self.camera.eye, lod.levels)
             lines = [(ring, ZONE_COLORS[rep]) for ring, rep in rings]
             self.renderer.set_view_state(msg.SetOverlay("zones", lines))
@@ -192,6 +194,7 @@ class GrassViewport(QWidget):
         self._image = QImage(frame.image.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
         self.last_stats = frame.stats
         self.update()
+        self.zone_scale.shown(frame.stats)
         self.frame_rendered.emit(frame.stats)
 
     def _show_quality(self, frame: Frame) -> None:

@@ -1,0 +1,66 @@
+"""`sward tune` as a user runs it: a real process, its report, JSON, front plot and the project
+file it writes into."""
+
+import json
+import os
+
+import pytest
+from PIL import Image
+
+from core.project_file import load_project
+from tests.test_cli import sward
+
+SMALL = ("--scene", "patch-grid", "--size", "160x90")
+
+
+def test_tune_searches_writes_its_front_and_reuses_the_references(tmp_path):
+    env = {**os.environ, "SWARD_CACHE": str(tmp_path / "cache")}
+    out = tmp_path / "out"
+    r = sward("tune", *SMALL, "--candidates", "5", "--out", str(out), env=env)
+    assert r.returncode == 0, r.stderr
+    assert "shipped:" in r.stdout and "references 1 drawn, 0 reused" in r.stdout
+    assert "[5/5]" in r.stderr  # the search says how far it is
+    result = json.loads((out / "tune.json").read_text())
+    assert len(result["candidates"]) >= 2 and result["front"]
+    assert result["budget_ms"] == pytest.approx(result["shipped"]["cost_ms"])
+    chosen = result["candidates"][result["chosen"]]
+    assert chosen["cost_ms"] <= result["budget_ms"] * 1.1
+    assert set(chosen["regions"]) == set(result["shipped"]["regions"])
+    with Image.open(out / "front.png") as plot:
+        assert plot.size == (640, 420)
+    again = sward("tune", *SMALL, "--candidates", "2", env=env)
+    assert again.returncode == 0, again.stderr
+    assert "references 0 drawn, 1 reused" in again.stdout
+
+
+def test_a_quality_target_and_apply_write_the_chosen_levels_into_the_project(tmp_path):
+    project = tmp_path / "grid.sward"
+    assert sward("new", str(project), "--scene", "patch-grid").returncode == 0
+    before = load_project(project).lod(0)
+    env = {**os.environ, "SWARD_CACHE": "off"}
+    r = sward(
+        "tune", "--project", str(project), "--size", "160x90", "--candidates", "6",
+        "--quality", "0.9", "--apply", env=env,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert f"wrote the chosen LOD setting into {project}" in r.stdout
+    after = load_project(project).lod(0)
+    # every setting reaches FLIP 0.9: the cheapest of them is written, not the shipped one
+    assert after != before
+    assert after.levels[0].end < before.levels[0].end  # the geometry zone is what costs
+
+
+@pytest.mark.parametrize(
+    "args,words",
+    [
+        (("--apply",), "give --project FILE"),
+        (("--quality", "1.5"), "--quality 1.5 out of range"),
+        (("--budget-ms", "-3"), "--budget-ms -3 out of range"),
+        (("--camera", "nowhere"), "nowhere"),
+        (("--path", "orbit", "--camera", "default"), "not both"),
+    ],
+)
+def test_tune_refuses_bad_input_in_one_line(args, words):
+    r = sward("tune", *SMALL, *args)
+    assert r.returncode == 2
+    assert words in r.stderr and "Traceback" not in r.stderr
