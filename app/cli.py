@@ -165,12 +165,12 @@ def cmd_tune(args: argparse.Namespace) -> int:
         raise CliError("--apply writes into a project file: give --project FILE")
     out_folder(args.out, "tune.json")
     if args.path is not None:
-        views = [
-            (f"{args.path} {i + 1}", c)
-            for i, c in enumerate(document.path_cameras(args.path, args.frames))
-        ]
+        views = [(f"path {args.path}", document.path_cameras(args.path, args.frames))]
     else:
-        views = [(n, document.camera(n)) for n in args.camera or [document.default_camera]]
+        from app.tune import dolly
+
+        names = args.camera or [document.default_camera]
+        views = [(n, dolly(document.camera(n))) for n in names]
     text, result = tune(
         document,
         args.size,

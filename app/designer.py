@@ -132,6 +132,7 @@ class DesignerWindow(QMainWindow):
             lambda configs, text: self.push(commands.set_lods(self.document, configs, text))
         )
         self.lod_panel.zones_toggled.connect(self.viewport.set_show_zones)
+        self.lod_panel.tune_requested.connect(self.tune_dialog)
         self.light_panel.light_edited.connect(
             lambda light: self.push(
                 commands.set_light(self.document, light, self.light_panel.dial.drag)
@@ -342,6 +343,13 @@ class DesignerWindow(QMainWindow):
             text = "quality: waiting for the view to rest · " + text
         held = vp.zone_scale.describe()
         self.status.setText(f"{text}  ·  {held}" if held else text)
+
+    def tune_dialog(self) -> None:
+        """LOD zones dock → Tune… (app/tune_job.py)."""
+        from app.tune_job import TuneJob
+
+        self.tune_job = TuneJob(self)
+        self.tune_job.dialog.show()
 
     def hold_frame_rate(self, on: bool) -> None:
         """View → Hold frame rate…: ask for the frame time to hold (the last full frame's to

@@ -2,15 +2,19 @@
 ch. 8's adaptive rendering, as an assistant): within a frame budget the best quality, or for a
 quality target the cheapest frame. core/tuning.py has the knobs, the front and the choice.
 
-Quality: quarter-resolution FLIP of each candidate's frame against all-geometry at each camera
-(or path frame), over the frame and over each technique region of the shipped setting's frame,
-and popping along a path. The references are drawn once per camera and kept on disk
-(render/reference_cache.py).
+Views: each camera with the same moved on DOLLY_FRAMES - 1 times by a quarter of a cell (so the
+zone boundaries sweep over the ground as when a person walks), or a path's frames.
 
-Cost: the median of FRAMES measured frames per camera (after one unmeasured frame, in which a
-new slice count converts), averaged over the cameras. A CPU renderer's speed drifts by some
-percent over minutes, so the chosen setting and the shipped one are measured again at the end,
-in turns (VERIFY_ROUNDS each), and those medians are what the verdict compares."""
+Quality: quarter-resolution FLIP of each candidate's frames against all-geometry, over the
+frame and over each technique region of the shipped setting's frame (the same pixels for every
+candidate), and popping over each view's frames (the largest change from one frame to the next
+over the reference's: narrow transitions look better standing still and pop when moving). The
+references are drawn once and kept on disk (render/reference_cache.py).
+
+Cost: per view the median frame time of its frames (after one unmeasured frame, in which a new
+slice count converts), averaged over the views. A CPU renderer's speed drifts by some percent
+over minutes, so claims are measured again at the end, in turns with the shipped setting
+(VERIFY_ROUNDS each), and those medians are what the verdict compares."""
 
 from __future__ import annotations
 
@@ -36,12 +40,14 @@ from core.tuning import (
     first_candidates,
     front,
     nearest_miss,
+    popping_limit,
     proposals,
     ranked,
     tuned,
 )
 
-FRAMES = 3  # measured frames per camera and candidate
+DOLLY_FRAMES = 4  # a camera's frames: it and the same moved on, for cost and popping
+DOLLY_STEP = 0.25  # world units (a quarter of a cell) a frame
 VERIFY_ROUNDS = 5
 VERIFY_AT_MOST = 4  # candidates measured again in turns for one claim
 NOISE = 1.1  # the search's times may be this far off: candidates up to it are measured again
@@ -50,33 +56,46 @@ BATCH = 6  # proposals nearest the current choice tried before proposing again
 TIME_LIMIT_S = 12 * 60.0  # the search stops proposing after this long
 
 
+def dolly(camera: Camera, frames: int = DOLLY_FRAMES, step: float = DOLLY_STEP) -> list[Camera]:
+    """The camera and the same moved towards its target `step` world units a frame, eye and
+    target alike: the zone boundaries sweep over the ground as when a person walks."""
+    eye, target = np.asarray(camera.eye), np.asarray(camera.target)
+    ahead = target - eye
+    ahead[1] = 0.0  # along the ground
+    ahead /= max(float(np.linalg.norm(ahead)), 1e-9)
+    return [
+        Camera.from_eye_target(
+            eye + k * step * ahead,
+            target + k * step * ahead,
+            fov_y=camera.fov_y,
+            near=camera.near,
+            far=camera.far,
+        )
+        for k in range(frames)
+    ]
+
+
 class TuneRun:
-    """One renderer on one context; the references and the shipped setting's regions."""
+    """One renderer on one context; per view a sequence of cameras (a camera's dolly, or a
+    path's frames), their references and the shipped setting's regions."""
 
     def __init__(
         self,
         document: Document,
         size: tuple[int, int],
-        views: list[tuple[str, Camera]],
-        path: bool,
+        views: list[tuple[str, list[Camera]]],
         say: Callable[[str], None],
     ) -> None:
         from render.context import standalone
         from render.headless import HeadlessRenderer
 
-        self.document, self.size, self.views, self.path, self.say = (
-            document,
-            size,
-            views,
-            path,
-            say,
-        )
+        self.document, self.size, self.views, self.say = document, size, views, say
         self.ctx = standalone()
         self.renderer = HeadlessRenderer(document, self.ctx)
         self.shipped = document.lods
-        self.references: list[np.ndarray] = []
-        self.masks: list[dict[str, np.ndarray]] = []
-        self.reused = 0
+        self.references: list[list[np.ndarray]] = []
+        self.masks: list[list[dict[str, np.ndarray]]] = []
+        self.reused = self.drawn = 0
 
     def release(self) -> None:
         self.document.set_lods(self.shipped)
@@ -85,71 +104,82 @@ class TuneRun:
 
     # -- what every candidate is compared with -------------------------------------------------
     def prepare(self) -> None:
+        for name, cameras in self.views:
+            self.say(f"references of {name}: {len(cameras)} frames")
+            refs, masks = [], []
+            for camera in cameras:
+                image, mask = self._reference(camera)
+                refs.append(image)
+                masks.append(mask)
+            self.references.append(refs)
+            self.masks.append(masks)
+
+    def _reference(self, camera: Camera) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         from core.view_mode import ViewMode
         from render import reference_cache
         from render.comparison import drawn_as
         from render.grass_type import technique_colors
 
         pipeline = self.renderer.pipeline
-        for i, (name, camera) in enumerate(self.views):
-            key = reference_cache.key(self.document, camera, self.size, pipeline.time)
-            image = reference_cache.load(key, self.size)
-            if image is None:
-                self.say(
-                    f"drawing the all-geometry reference of {name} ({i + 1}/{len(self.views)})"
-                )
-                with drawn_as(pipeline, ViewMode.GEOMETRY):
-                    image, _ = self.renderer.render(camera, self.size, measure=False)
-                reference_cache.save(key, image)
-            else:
-                self.reused += 1
-            self.references.append(image)
-            shaded, _ = self.renderer.render(camera, self.size, measure=False)
-            with drawn_as(pipeline, view="techniques"):
-                techniques, _ = self.renderer.render(camera, self.size, measure=False)
-            regions = technique_regions(shaded, techniques, technique_colors())
-            self.masks.append({n: quarter_mask(m) for n, m in regions.items() if m.any()})
+        key = reference_cache.key(self.document, camera, self.size, pipeline.time)
+        image = reference_cache.load(key, self.size)
+        if image is None:
+            with drawn_as(pipeline, ViewMode.GEOMETRY):
+                image, _ = self.renderer.render(camera, self.size, measure=False)
+            reference_cache.save(key, image)
+            self.drawn += 1
+        else:
+            self.reused += 1
+        shaded, _ = self.renderer.render(camera, self.size, measure=False)
+        with drawn_as(pipeline, view="techniques"):
+            techniques, _ = self.renderer.render(camera, self.size, measure=False)
+        regions = technique_regions(shaded, techniques, technique_colors())
+        return image, {n: quarter_mask(m) for n, m in regions.items() if m.any()}
 
     # -- one candidate ---------------------------------------------------------------------------
-    def frames(self, knobs: Knobs, frames: int) -> tuple[list[float], list[np.ndarray], dict]:
-        """Frame times (ms, a median per camera) and the last image of each camera."""
+    def frames(self, knobs: Knobs) -> tuple[list[float], list[list[np.ndarray]], dict]:
+        """Per view the median frame time (ms) and its frames, and the mean counts."""
         lods = [tuned(lod, knobs) for lod in self.shipped]
         self.document.set_lods(lods)  # type: ignore[arg-type]
-        costs, images, counts = [], [], {"c_g": 0, "c_v": 0, "c_i": 0, "triangles": 0}
-        for _name, camera in self.views:
-            self.renderer.render(camera, self.size, measure=False)  # new slices convert here
-            times = []
-            for _ in range(1 if self.path else frames):
+        costs, images = [], []
+        counts = {"c_g": 0, "c_v": 0, "c_i": 0, "triangles": 0}
+        drawn = 0
+        for _name, cameras in self.views:
+            self.renderer.render(cameras[0], self.size, measure=False)  # new slices convert
+            times, seq = [], []
+            for camera in cameras:
                 image, stats = self.renderer.render(camera, self.size, measure=True)
                 times.append(stats.t_a_ms)
+                seq.append(image)
+                for k in counts:
+                    counts[k] += getattr(stats, k)
+                drawn += 1
             costs.append(statistics.median(times))
-            images.append(image)
-            for k in counts:
-                counts[k] += getattr(stats, k)
-        return costs, images, counts
+            images.append(seq)
+        return costs, images, {k: v // max(drawn, 1) for k, v in counts.items()}
 
     def evaluate(self, knobs: Knobs) -> Candidate | None:
         if any(tuned(lod, knobs) is None for lod in self.shipped):
             return None
-        costs, images, counts = self.frames(knobs, FRAMES)
-        flips, regions = [], {}
-        for image, reference, masks in zip(images, self.references, self.masks, strict=True):
-            mean, error = flip(reference, image, QUARTER)
-            error = error.reshape(error.shape[0], error.shape[1])
-            flips.append(mean)
-            for name, mask in masks.items():
-                regions.setdefault(name, []).append(
-                    float(error[mask[: error.shape[0], : error.shape[1]]].mean())
-                )
-        cost = statistics.median(costs) if self.path else float(np.mean(costs))
-        pops = popping(images, self.references)["popping"] if self.path else None
+        costs, images, counts = self.frames(knobs)
+        flips, regions, pops = [], {}, []
+        for seq, refs, masks in zip(images, self.references, self.masks, strict=True):
+            for image, reference, mask in zip(seq, refs, masks, strict=True):
+                mean, error = flip(reference, image, QUARTER)
+                error = error.reshape(error.shape[0], error.shape[1])
+                flips.append(mean)
+                for name, m in mask.items():
+                    inside = error[m[: error.shape[0], : error.shape[1]]]
+                    regions.setdefault(name, []).append(float(inside.mean()))
+            if len(seq) > 1:
+                pops.append(popping(seq, refs)["popping"])
         return Candidate(
             knobs,
-            cost,
+            float(np.mean(costs)),
             float(np.mean(flips)),
             {n: float(np.mean(v)) for n, v in regions.items()},
-            pops,
-            {k: v // len(self.views) for k, v in counts.items()},
+            max(pops) if pops else None,
+            counts,
         )
 
     def in_turns(self, a: Knobs, b: Knobs, rounds: int) -> tuple[float, float]:
@@ -157,7 +187,7 @@ class TuneRun:
         times: dict[Knobs, list[float]] = {a: [], b: []}
         for _ in range(rounds):
             for k in (a, b):
-                costs, _, _ = self.frames(k, 1)
+                costs, _, _ = self.frames(k)
                 times[k].append(float(np.mean(costs)))
         return statistics.median(times[a]), statistics.median(times[b])
 
@@ -165,7 +195,7 @@ class TuneRun:
 def tune(
     document: Document,
     size: tuple[int, int],
-    views: list[tuple[str, Camera]],
+    views: list[tuple[str, list[Camera]]],
     path: str | None,
     budget_ms: float | None,
     quality: float | None,
@@ -178,7 +208,7 @@ def tune(
     what it found."""
     say = say or (lambda text: print(text, file=sys.stderr, flush=True))
     started = time.monotonic()
-    run = TuneRun(document, size, views, path is not None, say)
+    run = TuneRun(document, size, views, say)
     candidates: list[Candidate] = []
     seen: set[Knobs] = set()
     stopped = ""
@@ -210,9 +240,9 @@ def tune(
                         f"{found.cost_ms:.0f} ms, FLIP {found.flip:.4f}"
                     )
                 if not queue:
-                    target = choose(candidates, budget_ms, quality) or nearest_miss(
-                        candidates, budget_ms, quality
-                    )
+                    target = choose(
+                        candidates, budget_ms, quality, popping_limit(shipped)
+                    ) or nearest_miss(candidates, budget_ms, quality)
                     queue = proposals(candidates, seen, target)[:BATCH]
         except KeyboardInterrupt:
             stopped = "stopped (Ctrl+C)"
@@ -233,22 +263,23 @@ def tune(
 
 def _result(run, document, size, views, path, budget_ms, quality, candidates, shipped) -> dict:
     checks = Checks(run, shipped, budget_ms)
-    chosen = _chosen(candidates, budget_ms, quality, checks)
+    chosen = _chosen(candidates, budget_ms, quality, checks, popping_limit(shipped))
     result: dict = {
         "scene": document.name,
         "size": list(size),
         "views": [name for name, _ in views],
+        "frames_per_view": [len(cameras) for _, cameras in views],
         "path": path,
         "budget_ms": budget_ms,
         "quality": quality,
         "references_reused": run.reused,
-        "references_drawn": len(views) - run.reused,
+        "references_drawn": run.drawn,
         "shipped": shipped.to_dict(),
         "candidates": [c.to_dict() for c in candidates],
         "front": [candidates.index(c) for c in front(candidates)],
         "chosen": None if chosen is None else candidates.index(chosen),
     }
-    if budget_ms is not None:
+    if budget_ms is not None and budget_ms >= shipped.cost_ms:
         # the chosen setting where it beats the shipped one in every figure, else the cheapest
         # that does (each measured again in turns)
         pool = as_good_as_shipped(candidates, shipped, budget_ms * NOISE)
@@ -300,17 +331,17 @@ class Checks:
         return self.done[c.knobs]["holds"]
 
 
-def _chosen(candidates, budget_ms, quality, checks: Checks) -> Candidate | None:
+def _chosen(candidates, budget_ms, quality, checks: Checks, pops) -> Candidate | None:
     """For a quality: the cheapest that reaches it. For a budget: the best whose time holds
     the budget measured again in turns (the first VERIFY_AT_MOST tried); when none does, the
-    best by the search's figures (its entry in "verified" says so)."""
+    best by the search's figures (its entry in "verified" says so). Either popping no more
+    than `pops`."""
     if budget_ms is None:
-        return choose(candidates, quality=quality)
-    pool = ranked(candidates, budget_ms * NOISE)
-    for c in pool[:VERIFY_AT_MOST]:
+        return choose(candidates, quality=quality, popping_limit=pops)
+    for c in ranked(candidates, budget_ms * NOISE, popping_limit=pops)[:VERIFY_AT_MOST]:
         if checks.holds(c):
             return c
-    return choose(candidates, budget_ms)
+    return choose(candidates, budget_ms, popping_limit=pops)
 
 
 def _levels(config) -> list[dict]:

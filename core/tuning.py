@@ -23,6 +23,9 @@ from core.lod import LodConfig
 from core.params import SLICE_COUNTS
 
 MACRO_LARGEST = 64  # the largest macro-cell edge a candidate may use
+# a choice pops no more than the shipped setting or this, whichever is more (popping: the
+# largest change from frame to frame over the reference's, core/quality.py)
+POPPING_LIMIT = 1.2
 
 
 @dataclass(frozen=True, order=True)
@@ -104,8 +107,8 @@ def neighbours(knobs: Knobs) -> list[Knobs]:
         ):
             low, high = LIMITS.get(name, (-3, 3))
             if low <= moved <= high:
-                if isinstance(moved, float):
-                    moved = float(f"{moved:.4g}")
+                if isinstance(moved, float):  # a whole number of steps: no near-duplicates
+                    moved = float(f"{step ** round(math.log(moved, step)):.4g}")
                 found.append(dataclasses.replace(knobs, **{name: moved}))
     return found
 
@@ -156,12 +159,16 @@ def front(candidates: list[Candidate]) -> list[Candidate]:
 
 
 def choose(
-    candidates: list[Candidate], budget_ms: float | None = None, quality: float | None = None
+    candidates: list[Candidate],
+    budget_ms: float | None = None,
+    quality: float | None = None,
+    popping_limit: float | None = None,
 ) -> Candidate | None:
     """Within a budget: the best frame FLIP costing at most `budget_ms` (the shipped setting
     wins ties: it is what the person knows). For a quality: the cheapest candidate whose frame
-    FLIP is at most `quality`. None when nothing meets the target."""
-    found = ranked(candidates, budget_ms, quality)
+    FLIP is at most `quality`. Either popping no more than `popping_limit`. None when nothing
+    meets the target."""
+    found = ranked(candidates, budget_ms, quality, popping_limit)
     return found[0] if found else None
 
 
@@ -189,14 +196,25 @@ def as_good_as_shipped(
 
 
 def ranked(
-    candidates: list[Candidate], budget_ms: float | None = None, quality: float | None = None
+    candidates: list[Candidate],
+    budget_ms: float | None = None,
+    quality: float | None = None,
+    popping_limit: float | None = None,
 ) -> list[Candidate]:
-    """The candidates that meet the target, best first (`choose` takes the first)."""
+    """The candidates that meet the target and pop no more than `popping_limit`, best first
+    (`choose` takes the first)."""
+    if popping_limit is not None:
+        candidates = [c for c in candidates if c.popping is None or c.popping <= popping_limit]
     if budget_ms is not None:
         within = [c for c in candidates if c.cost_ms <= budget_ms]
         return sorted(within, key=lambda c: (c.flip, c.knobs != SHIPPED, c.cost_ms))
     assert quality is not None
     return sorted((c for c in candidates if c.flip <= quality), key=lambda c: (c.cost_ms, c.flip))
+
+
+def popping_limit(shipped: Candidate) -> float | None:
+    """How much a chosen setting may pop: as the shipped one does, at least POPPING_LIMIT."""
+    return None if shipped.popping is None else max(shipped.popping, POPPING_LIMIT)
 
 
 def nearest_miss(

@@ -18,7 +18,9 @@ def test_tune_searches_writes_its_front_and_reuses_the_references(tmp_path):
     out = tmp_path / "out"
     r = sward("tune", *SMALL, "--candidates", "5", "--out", str(out), env=env)
     assert r.returncode == 0, r.stderr
-    assert "shipped:" in r.stdout and "references 1 drawn, 0 reused" in r.stdout
+    assert (
+        "shipped:" in r.stdout and "references 4 drawn, 0 reused" in r.stdout
+    )  # the camera and 3 steps on
     assert "[5/5]" in r.stderr  # the search says how far it is
     result = json.loads((out / "tune.json").read_text())
     assert len(result["candidates"]) >= 2 and result["front"]
@@ -30,7 +32,7 @@ def test_tune_searches_writes_its_front_and_reuses_the_references(tmp_path):
         assert plot.size == (640, 420)
     again = sward("tune", *SMALL, "--candidates", "2", env=env)
     assert again.returncode == 0, again.stderr
-    assert "references 0 drawn, 1 reused" in again.stdout
+    assert "references 0 drawn, 4 reused" in again.stdout
 
 
 def test_a_quality_target_and_apply_write_the_chosen_levels_into_the_project(tmp_path):

@@ -44,6 +44,7 @@ class LodPanel(QWidget):
     lod_edited = Signal(int, object)  # grass type, LodConfig
     view_height_edited = Signal(object, str)  # every grass type's LodConfig, what changed
     zones_toggled = Signal(bool)
+    tune_requested = Signal()
 
     def __init__(self, document: Document, parent=None) -> None:
         super().__init__(parent)
@@ -83,6 +84,11 @@ class LodPanel(QWidget):
         view_row.addWidget(self.view_box, 1)
         self.zones_box = QCheckBox("Show zones on the terrain (Z)")
         self.zones_box.toggled.connect(self.zones_toggled)
+        self.tune_button = QPushButton("Tune…")
+        self.tune_button.setToolTip(
+            "search the zones for a frame budget or a quality against all-geometry"
+        )
+        self.tune_button.clicked.connect(self.tune_requested)
         self.message = QLabel()
         self.message.setWordWrap(True)
         layout = QVBoxLayout(self)
@@ -91,6 +97,7 @@ class LodPanel(QWidget):
         layout.addLayout(buttons)
         layout.addLayout(view_row)
         layout.addWidget(self.zones_box)
+        layout.addWidget(self.tune_button)
         layout.addWidget(self.message)
         document.events.lod.connect(self._on_lod_changed)
         self.set_document(document)

@@ -89,3 +89,16 @@ def test_proposals_are_unseen_neighbours_nearest_the_choice_first():
     found = proposals([a, b], seen, b)
     assert not set(found) & seen
     assert found[0] in neighbours(b.knobs)
+
+
+def test_a_choice_pops_no_more_than_the_shipped_setting_or_the_limit():
+    from core.tuning import POPPING_LIMIT, popping_limit
+
+    shipped = c(SHIPPED, 100.0, 0.07, {}, 0.9)
+    narrow = c(Knobs(transition=0.2), 90.0, 0.03, {}, 1.6)  # sharp in a still frame, pops
+    wide = c(Knobs(near=0.8), 80.0, 0.06, {}, 1.0)
+    limit = popping_limit(shipped)
+    assert limit == POPPING_LIMIT
+    assert choose([shipped, narrow, wide], budget_ms=100.0, popping_limit=limit) is wide
+    assert choose([shipped, narrow, wide], budget_ms=100.0) is narrow
+    assert popping_limit(c(SHIPPED, 1.0, 0.1, {}, 1.5)) == 1.5
