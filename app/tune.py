@@ -292,7 +292,7 @@ def _result(run, document, size, views, path, budget_ms, quality, candidates, sh
             result["verdict"] = (
                 f"the shipped setting is on the front: none of the {len(cheaper)} cheaper "
                 "settings tried is as good in the frame and every region"
-                + (" (or measured in turns, costs no more)" if checks.done else "")
+                + (" at no more cost measured in turns" if checks.done else "")
             )
     index = {c.knobs: i for i, c in enumerate(candidates)}
     result["verified"] = [{"candidate": index[k], **v} for k, v in checks.done.items()]

@@ -139,14 +139,16 @@ class Candidate:
 
 
 def at_least_as_good(a: Candidate, b: Candidate) -> bool:
-    """`a`'s quality is no worse than `b`'s in the frame, in every region `b` has, and in
-    popping where both have it."""
+    """`a`'s quality is no worse than `b`'s in the frame and in every region `b` has, and it
+    pops no more than `b` does or than POPPING_LIMIT (below which a change from frame to frame
+    is no more than the grass's own)."""
     if a.flip > b.flip:
         return False
     for name, figure in b.regions.items():
         if a.regions.get(name, 0.0) > figure:
             return False
-    return not (a.popping is not None and b.popping is not None and a.popping > b.popping)
+    limit = popping_limit(b)
+    return not (a.popping is not None and limit is not None and a.popping > limit)
 
 
 def front(candidates: list[Candidate]) -> list[Candidate]:

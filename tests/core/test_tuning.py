@@ -77,9 +77,9 @@ def test_the_front_and_the_choice():
     # as good in the frame and every region, and cheaper: only the one with fewer slices
     assert better_than_shipped(all_, shipped, 100.0) is cheaper_as_good
     assert not at_least_as_good(cheaper_worse_region, shipped)
-    assert not at_least_as_good(
-        c(SHIPPED, 1, 0.07, shipped.regions, 1.3), c(SHIPPED, 1, 0.07, shipped.regions, 1.1)
-    )
+    # popping: no more than the other's or the limit (1.2), whichever is more
+    assert not at_least_as_good(c(SHIPPED, 1, 0.07, {}, 1.3), c(SHIPPED, 1, 0.07, {}, 1.1))
+    assert at_least_as_good(c(SHIPPED, 1, 0.07, {}, 0.9), c(SHIPPED, 1, 0.07, {}, 0.8))
 
 
 def test_proposals_are_unseen_neighbours_nearest_the_choice_first():
