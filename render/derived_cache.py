@@ -231,16 +231,20 @@ def save(kind: str, key: str, sums) -> None:
 
 
 def _prune(base: Path) -> None:
-    files = []
-    for p in base.iterdir():
-        if _NAME.match(p.name):
-            with contextlib.suppress(OSError):
-                st = p.stat()
-                files.append((st.st_mtime, st.st_size, p))
+    keep_newest([p for p in base.iterdir() if _NAME.match(p.name)], MAX_BYTES)
+
+
+def keep_newest(files: list[Path], max_bytes: int) -> None:
+    """Remove the oldest of `files` beyond the newest `max_bytes`."""
+    found = []
+    for p in files:
+        with contextlib.suppress(OSError):
+            st = p.stat()
+            found.append((st.st_mtime, st.st_size, p))
     total = 0
-    for _mtime, size, p in sorted(files, key=lambda f: f[0], reverse=True):
+    for _mtime, size, p in sorted(found, key=lambda f: f[0], reverse=True):
         total += size
-        if total > MAX_BYTES:
+        if total > max_bytes:
             p.unlink(missing_ok=True)
 
 

@@ -7,7 +7,6 @@ as PNG, the newest up to MAX_BYTES; the file name carries a digest of the code t
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import json
 import os
@@ -99,13 +98,4 @@ def save(name: str, image: np.ndarray) -> None:
 
 
 def _prune(folder: Path) -> None:
-    files = []
-    for p in folder.glob("geometry-*.png"):
-        with contextlib.suppress(OSError):
-            st = p.stat()
-            files.append((st.st_mtime, st.st_size, p))
-    total = 0
-    for _mtime, size, p in sorted(files, key=lambda f: f[0], reverse=True):
-        total += size
-        if total > MAX_BYTES:
-            p.unlink(missing_ok=True)
+    derived_cache.keep_newest(list(folder.glob("geometry-*.png")), MAX_BYTES)
