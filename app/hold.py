@@ -76,21 +76,13 @@ def _frame(renderer, index: int, camera, size, factor: float) -> tuple[np.ndarra
 
 def _popping(renderer, cameras, factors) -> dict:
     """The sequence with these factors against all-geometry, at POPPING_SIZE."""
-    from core.view_mode import ViewMode
-    from render import reference_cache
-    from render.comparison import drawn_as
+    from render.reference_cache import geometry_frame
 
     lod, references = [], []
     for i, (camera, factor) in enumerate(zip(cameras, factors, strict=True)):
         lod.append(_frame(renderer, i, camera, POPPING_SIZE, factor)[0])
         renderer.pipeline.time = i * FRAME_S
-        key = reference_cache.key(renderer.binding.document, camera, POPPING_SIZE, i * FRAME_S)
-        reference = reference_cache.load(key, POPPING_SIZE)
-        if reference is None:
-            with drawn_as(renderer.pipeline, ViewMode.GEOMETRY):
-                reference, _ = renderer.render(camera, POPPING_SIZE, measure=False)
-            reference_cache.save(key, reference)
-        references.append(reference)
+        references.append(geometry_frame(renderer, camera, POPPING_SIZE)[0])
     return popping(lod, references)
 
 

@@ -116,23 +116,15 @@ class TuneRun:
             self.masks.append(masks)
 
     def _reference(self, camera: Camera) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        from core.view_mode import ViewMode
-        from render import reference_cache
         from render.comparison import drawn_as
         from render.grass_type import technique_colors
+        from render.reference_cache import geometry_frame
 
-        pipeline = self.renderer.pipeline
-        key = reference_cache.key(self.document, camera, self.size, pipeline.time)
-        image = reference_cache.load(key, self.size)
-        if image is None:
-            with drawn_as(pipeline, ViewMode.GEOMETRY):
-                image, _ = self.renderer.render(camera, self.size, measure=False)
-            reference_cache.save(key, image)
-            self.drawn += 1
-        else:
-            self.reused += 1
+        image, drawn = geometry_frame(self.renderer, camera, self.size)
+        self.drawn += drawn
+        self.reused += not drawn
         shaded, _ = self.renderer.render(camera, self.size, measure=False)
-        with drawn_as(pipeline, view="techniques"):
+        with drawn_as(self.renderer.pipeline, view="techniques"):
             techniques, _ = self.renderer.render(camera, self.size, measure=False)
         regions = technique_regions(shaded, techniques, technique_colors())
         return image, {n: quarter_mask(m) for n, m in regions.items() if m.any()}

@@ -99,3 +99,20 @@ def save(name: str, image: np.ndarray) -> None:
 
 def _prune(folder: Path) -> None:
     derived_cache.keep_newest(list(folder.glob("geometry-*.png")), MAX_BYTES)
+
+
+def geometry_frame(renderer, camera: Camera, size: tuple[int, int]) -> tuple[np.ndarray, bool]:
+    """The all-geometry frame of `renderer`'s document (a HeadlessRenderer) at this camera and
+    the pipeline's wind moment: the kept one, or drawn and kept; and whether it was drawn."""
+    from core.view_mode import ViewMode
+    from render.comparison import drawn_as
+
+    pipeline = renderer.pipeline
+    name = key(renderer.binding.document, camera, size, pipeline.time)
+    image = load(name, size)
+    if image is not None:
+        return image, False
+    with drawn_as(pipeline, ViewMode.GEOMETRY):
+        image, _ = renderer.render(camera, size, measure=False)
+    save(name, image)
+    return image, True

@@ -1,6 +1,7 @@
 """`sward tune` as a user runs it: a real process, its report, JSON, front plot and the project
 file it writes into."""
 
+import itertools
 import json
 import os
 
@@ -66,3 +67,23 @@ def test_tune_refuses_bad_input_in_one_line(args, words):
     r = sward("tune", *SMALL, *args)
     assert r.returncode == 2
     assert words in r.stderr and "Traceback" not in r.stderr
+
+
+def test_profile_holds_a_frame_time_along_a_path_and_reports_it(tmp_path):
+    env = {**os.environ, "SWARD_CACHE": str(tmp_path / "cache")}
+    out = tmp_path / "hold.json"
+    r = sward(
+        "profile", *SMALL, "--path", "orbit", "--frames", "6", "--hold-ms", "1",
+        "--out", str(out), env=env,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "holding 1 ms a frame" in r.stdout and "popping" in r.stdout
+    result = json.loads(out.read_text())
+    factors = result["factors"]
+    assert len(factors) == len(result["frame_ms"]) == 6
+    # far over a 1 ms target every frame: the zones draw in, a step at most 15 % a frame
+    assert factors[0] == 1.0 and factors[-1] < factors[1] <= 1.0
+    assert all(0.85 <= b / a <= 1.0 for a, b in itertools.pairwise(factors))
+    assert result["popping"]["held"]["popping"] > 0
+    refused = sward("profile", *SMALL, "--hold-ms", "100")
+    assert refused.returncode == 2 and "give --path NAME" in refused.stderr
