@@ -183,22 +183,25 @@ def cmd_tune(args: argparse.Namespace) -> int:
     )
     print(text)
     if args.apply:
-        _apply_tuned(args.project, document, result)
+        _apply_tuned(args.project, result)
     return 0
 
 
-def _apply_tuned(path: Path, document, result: dict) -> None:
-    """The chosen levels into the project file (one edit: the file is written once)."""
-    from core.project_file import ProjectError, save_project
+def _apply_tuned(path: Path, result: dict) -> None:
+    """The chosen knobs turned on the project file's own levels, and only those: what the
+    command line overrode for the run (--wind, --lod-view-height) stays as the file has it.
+    One edit: the file is written once."""
+    from core.project_file import ProjectError, load_project, save_project
     from core.tuning import Knobs, tuned
 
     if result["chosen"] is None:
         print(f"{path} left as it was: nothing tried meets the target")
         return
     knobs = Knobs(**result["candidates"][result["chosen"]]["knobs"])
-    document.set_lods([tuned(lod, knobs) for lod in document.lods])  # type: ignore[misc]
     try:
-        save_project(path, document)
+        project = load_project(path)
+        project.set_lods([tuned(lod, knobs) for lod in project.lods])  # type: ignore[misc]
+        save_project(path, project)
     except ProjectError as exc:
         raise CliError(str(exc)) from None
     print(f"wrote the chosen LOD setting into {path}")

@@ -43,7 +43,7 @@ def test_a_quality_target_and_apply_write_the_chosen_levels_into_the_project(tmp
     env = {**os.environ, "SWARD_CACHE": "off"}
     r = sward(
         "tune", "--project", str(project), "--size", "160x90", "--candidates", "6",
-        "--quality", "0.9", "--apply", env=env,
+        "--quality", "0.9", "--apply", "--wind", "storm", env=env,
     )  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert f"wrote the chosen LOD setting into {project}" in r.stdout
@@ -51,6 +51,8 @@ def test_a_quality_target_and_apply_write_the_chosen_levels_into_the_project(tmp
     # every setting reaches FLIP 0.9: the cheapest of them is written, not the shipped one
     assert after != before
     assert after.levels[0].end < before.levels[0].end  # the geometry zone is what costs
+    # only the levels: the storm the run was drawn in is not written (the scene's is off)
+    assert not load_project(project).wind.enabled
 
 
 @pytest.mark.parametrize(
