@@ -13,11 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
+from app.profile import FRAME_S  # seconds of wind a frame, as `sward profile`
 from core.document import Document
 from core.hold import HoldFrameTime
 from core.quality import popping
 
-FRAME_S = 1.0 / 30.0  # seconds of wind a frame, as `sward profile`
 POPPING_SIZE = (480, 270)
 
 

@@ -28,7 +28,7 @@ MACRO_LARGEST = 64  # the largest macro-cell edge a candidate may use
 POPPING_LIMIT = 1.2
 
 
-@dataclass(frozen=True, order=True)
+@dataclass(frozen=True)
 class Knobs:
     near: float = 1.0
     far: float = 1.0
@@ -171,16 +171,6 @@ def choose(
     FLIP is at most `quality`. Either popping no more than `popping_limit`. None when nothing
     meets the target."""
     found = ranked(candidates, budget_ms, quality, popping_limit)
-    return found[0] if found else None
-
-
-def better_than_shipped(
-    candidates: list[Candidate], shipped: Candidate, budget_ms: float
-) -> Candidate | None:
-    """The candidate at least as good as the shipped setting in every figure that costs less
-    (the cheapest such), or None: then the shipped setting is on the front as far as the search
-    saw."""
-    found = as_good_as_shipped(candidates, shipped, budget_ms)
     return found[0] if found else None
 
 

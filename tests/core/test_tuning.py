@@ -8,8 +8,8 @@ from core.tuning import (
     SHIPPED,
     Candidate,
     Knobs,
+    as_good_as_shipped,
     at_least_as_good,
-    better_than_shipped,
     choose,
     first_candidates,
     front,
@@ -75,7 +75,7 @@ def test_the_front_and_the_choice():
     assert choose(all_, budget_ms=50.0) is None
     assert choose(all_, quality=0.069) is cheaper_worse_region  # the cheapest that reaches it
     # as good in the frame and every region, and cheaper: only the one with fewer slices
-    assert better_than_shipped(all_, shipped, 100.0) is cheaper_as_good
+    assert as_good_as_shipped(all_, shipped, 100.0) == [cheaper_as_good]
     assert not at_least_as_good(cheaper_worse_region, shipped)
     # popping: no more than the other's or the limit (1.2), whichever is more
     assert not at_least_as_good(c(SHIPPED, 1, 0.07, {}, 1.3), c(SHIPPED, 1, 0.07, {}, 1.1))

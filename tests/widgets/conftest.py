@@ -98,3 +98,22 @@ def grab(win) -> np.ndarray:
 def wait_for_slices(window, qtbot):
     """The full-quality renderer converts slices before it draws: its frame has them all."""
     wait_full(window)
+
+
+def field(tree, name: str):
+    """The editing widget of the parameter `name` in a panel's ParameterTree."""
+    for item in tree.listAllItems():
+        if getattr(item, "param", None) is not None and item.param.name() == name:
+            return item.widget
+    raise LookupError(name)
+
+
+def type_into(box, text: str) -> None:
+    """Type into a parameter's spin box as a person does: select all, type, Enter."""
+    from PySide6.QtCore import Qt
+    from PySide6.QtTest import QTest
+
+    box.setFocus()
+    box.lineEdit().selectAll()
+    QTest.keyClicks(box.lineEdit(), text)
+    QTest.keyClick(box.lineEdit(), Qt.Key.Key_Return)

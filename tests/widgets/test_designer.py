@@ -6,16 +6,13 @@ from PySide6.QtCore import QPoint, Qt
 
 from render.protocol import SetOverlay
 from tests.conftest import coverage
-from tests.widgets.conftest import grab, keep, wait_for_slices
+from tests.widgets.conftest import field, grab, keep, type_into, wait_for_slices
 
 pytestmark = pytest.mark.gui
 
 
 def spin_box(win, name):
-    for item in win.panel.tree.listAllItems():
-        if getattr(item, "param", None) is not None and item.param.name() == name:
-            return item.widget
-    raise LookupError(name)
+    return field(win.panel.tree, name)
 
 
 def test_blade_count_edit_regenerates_patch_and_changes_image(window, qtbot):
@@ -316,16 +313,6 @@ def test_each_grass_type_has_its_own_blades(window, qtbot, tmp_path):
     assert panel.param("blade_count").value() == 300
     panel.param("grass_type").setValue(0)
     assert panel.param("blade_count").value() == first.blade_count
-
-
-def type_into(box, text):
-    """Type into a parameter's spin box as a person does: select all, type, Enter."""
-    from PySide6.QtTest import QTest
-
-    box.setFocus()
-    box.lineEdit().selectAll()
-    QTest.keyClicks(box.lineEdit(), text)
-    QTest.keyClick(box.lineEdit(), Qt.Key.Key_Return)
 
 
 def test_a_number_typed_without_its_unit_is_taken_in_that_unit(window, qtbot):
@@ -689,11 +676,7 @@ def test_the_light_dock_takes_numbers_with_or_without_their_unit(window, qtbot):
     naming the field and its range and changes nothing."""
     panel = window.light_panel
     window.light_dock.raise_()
-    box = next(
-        item.widget
-        for item in panel.tree.listAllItems()
-        if getattr(item, "param", None) is not None and item.param.name() == "sun_elevation"
-    )
+    box = field(panel.tree, "sun_elevation")
     type_into(box, "45")
     qtbot.waitUntil(lambda: window.document.light.sun_elevation == pytest.approx(45.0))
     type_into(box, "30 °")
@@ -757,11 +740,7 @@ def test_the_fog_distance_reads_as_a_plain_number(window):
     """1500 units of fog distance read "1500 units", not "1.5e+03 units"."""
     panel = window.light_panel
     panel.root.child("fog_distance").setValue(1500.0)
-    box = next(
-        item.widget
-        for item in panel.tree.listAllItems()
-        if getattr(item, "param", None) is not None and item.param.name() == "fog_distance"
-    )
+    box = field(panel.tree, "fog_distance")
     assert box.lineEdit().text().startswith("1500") and "e+" not in box.lineEdit().text()
 
 

@@ -5,7 +5,7 @@ import pytest
 from PySide6.QtCore import QPointF, Qt
 from PySide6.QtTest import QTest
 
-from tests.widgets.conftest import grab
+from tests.widgets.conftest import field, grab, type_into
 
 pytestmark = pytest.mark.gui
 
@@ -59,15 +59,9 @@ def test_the_dial_turns_with_the_view_and_steps_with_the_arrow_keys(window, qtbo
 
 
 def test_text_that_is_no_number_in_the_light_dock_gets_a_message(window, qtbot):
-    from tests.widgets.test_designer import type_into
-
     panel = window.light_panel
     window.light_dock.raise_()
-    box = next(
-        item.widget
-        for item in panel.tree.listAllItems()
-        if getattr(item, "param", None) is not None and item.param.name() == "sun_azimuth"
-    )
+    box = field(panel.tree, "sun_azimuth")
     type_into(box, "north")
     assert "Sun azimuth: “north” is not a number" in panel.message.text()
     assert "°" in panel.message.text()  # it may be typed with its unit
