@@ -11,6 +11,12 @@ $(STAMP): pyproject.toml
 
 setup: $(STAMP)
 
+# the optional extras (sward[cluster]: Ray) stay out of `make run`; their tests need them
+EXTRAS := $(VENV)/.sward-extras
+$(EXTRAS): $(STAMP)
+	$(PY) -m pip install --quiet -e '.[test,cluster]'
+	@touch $(EXTRAS)
+
 system-deps:
 	@bash scripts/system-deps.sh
 
@@ -24,7 +30,7 @@ lint: $(STAMP)
 	$(VENV)/bin/mypy
 	$(VENV)/bin/vulture
 
-test: system-deps lint
+test: system-deps lint $(EXTRAS)
 	$(VENV)/bin/sward info
 	# core/ and the designer's controllers with Qt and GL unimportable (tests/blocked.py)
 	$(PY) -m pytest -n 2 -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app

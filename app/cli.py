@@ -20,6 +20,7 @@ from app.cli_input import (
     writable,
 )
 from app.cli_render import cmd_render
+from app.cli_tune import cmd_tune
 
 
 def cmd_new(args: argparse.Namespace) -> int:
@@ -142,69 +143,6 @@ def _sweep(args: argparse.Namespace) -> int:
     text, result = sweep(args.size, args.out, args.case)
     print(text)
     return 1 if result["failed"] else 0  # a guard: a check over its limit fails the run
-
-
-def cmd_tune(args: argparse.Namespace) -> int:
-    from app.tune import tune
-
-    document = document_of(args)
-    for name in args.camera or []:
-        known_camera(document, name)
-    known_path(document, args.path)
-    if args.path is not None and args.camera:
-        raise CliError("give --camera or --path, not both")
-    if not 2 <= args.frames <= 100:
-        raise CliError(f"--frames {args.frames} out of range; allowed 2 … 100")
-    if args.budget_ms is not None and not 0 < args.budget_ms <= 1e6:
-        raise CliError(f"--budget-ms {args.budget_ms:g} out of range; above 0")
-    if args.quality is not None and not 0 < args.quality < 1:
-        raise CliError(f"--quality {args.quality:g} out of range; a FLIP above 0, below 1")
-    if not 1 <= args.candidates <= 10_000:
-        raise CliError(f"--candidates {args.candidates} out of range; allowed 1 … 10000")
-    if args.apply and args.project is None:
-        raise CliError("--apply writes into a project file: give --project FILE")
-    out_folder(args.out, "tune.json")
-    if args.path is not None:
-        views = [(f"path {args.path}", document.path_cameras(args.path, args.frames))]
-    else:
-        from app.tune import dolly
-
-        names = args.camera or [document.default_camera]
-        views = [(n, dolly(document.camera(n))) for n in names]
-    text, result = tune(
-        document,
-        args.size,
-        views,
-        args.path,
-        args.budget_ms,
-        args.quality,
-        args.out,
-        max_candidates=args.candidates,
-    )
-    print(text)
-    if args.apply:
-        _apply_tuned(args.project, result)
-    return 0
-
-
-def _apply_tuned(path: Path, result: dict) -> None:
-    """The chosen knobs turned on the project file's own levels, and only those: what the
-    command line overrode for the run (--wind, --lod-view-height) stays as the file has it.
-    One edit: the file is written once."""
-    from core.project_file import ProjectError, load_project, save_project
-    from core.tuning import Knobs, tuned
-
-    if result["chosen"] is None:
-        print(f"{path} left as it was: nothing tried meets the target")
-        return
-    knobs = Knobs(**result["candidates"][result["chosen"]]["knobs"])
-    try:
-        project = load_project(path)
-        project.set_lods([tuned(lod, knobs) for lod in project.lods])  # type: ignore[misc]
-        save_project(path, project)
-    except ProjectError as exc:
-        raise CliError(str(exc)) from None
-    print(f"wrote the chosen LOD setting into {path}")
 
 
 def cmd_scenes(_: argparse.Namespace) -> int:

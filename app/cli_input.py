@@ -258,7 +258,9 @@ def parser() -> argparse.ArgumentParser:
     t = sub.add_parser(
         "tune", parents=[document], help="search LOD settings for a frame budget or a quality"
     )
-    _tune_options(t)
+    from app.cli_tune import tune_options  # it imports this module
+
+    tune_options(t)
 
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
@@ -266,27 +268,6 @@ def parser() -> argparse.ArgumentParser:
     b.add_argument("--suite", action="append", help="benchmark suite (default: all)")
     b.add_argument("--out", type=Path, help="JSON file for the results")
     return p
-
-
-def _tune_options(t: argparse.ArgumentParser) -> None:
-    t.add_argument("--camera", action="append", help="named camera (repeat for several)")
-    t.add_argument("--path", help="camera path: its frames are the views, popping counts too")
-    t.add_argument("--frames", type=int, default=6, help="frames along --path (default 6)")
-    target = t.add_mutually_exclusive_group()
-    target.add_argument(
-        "--budget-ms",
-        type=float,
-        help="frame time to stay within (default: the shipped setting's, measured)",
-    )
-    target.add_argument("--quality", type=float, help="quarter-resolution FLIP to reach")
-    t.add_argument("--size", type=_size, default=(480, 270), help="image size WxH")
-    t.add_argument(
-        "--candidates", type=int, default=150, help="settings to try at most (default 150)"
-    )
-    t.add_argument("--out", type=Path, help="folder for tune.json and front.png")
-    t.add_argument(
-        "--apply", action="store_true", help="write the chosen setting into --project's file"
-    )
 
 
 def _quality_options(q: argparse.ArgumentParser) -> None:

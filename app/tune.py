@@ -2,36 +2,31 @@
 ch. 8's adaptive rendering, as an assistant): within a frame budget the best quality, or for a
 quality target the cheapest frame. core/tuning.py has the knobs, the front and the choice.
 
-Views: each camera with the same moved on DOLLY_FRAMES - 1 times by a quarter of a cell (so the
-zone boundaries sweep over the ground as when a person walks), or a path's frames.
+Views: each camera with the same moved on by a quarter of a cell a frame (so the zone
+boundaries sweep over the ground as when a person walks), or a path's frames; their renders,
+references and figures are app/tune_run.py's.
 
-Quality: quarter-resolution FLIP of each candidate's frames against all-geometry, over the
-frame and over each technique region of the shipped setting's frame (the same pixels for every
-candidate), and popping over each view's frames (the largest change from one frame to the next
-over the reference's: narrow transitions look better standing still and pop when moving). The
-references are drawn once and kept on disk (render/reference_cache.py).
-
-Cost: per view the median frame time of its frames (after one unmeasured frame, in which a new
-slice count converts), averaged over the views. A CPU renderer's speed drifts by some percent
-over minutes, so claims are measured again at the end, in turns with the shipped setting
+Cost: measured here, one candidate at a time; with --workers / --ray the first candidates are
+measured so and the others predicted from their counts (core/cost_model.py), since frames
+drawn side by side time each other. A CPU renderer's speed drifts by some percent over minutes,
+so claims are measured again at the end, alone, in turns with the shipped setting
 (VERIFY_ROUNDS each), and those medians are what the verdict compares."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
-import statistics
 import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
 
-import numpy as np
-
 from app.tune_report import plot_front, report
+from app.tune_run import TuneRun
+from app.tune_workers import Pool, TuneWorker
 from core.camera import Camera
+from core.cost_model import CostModel
 from core.document import Document
-from core.image_diff import QUARTER, flip
-from core.quality import popping, quarter_mask, technique_regions
 from core.tuning import (
     SHIPPED,
     Candidate,
@@ -47,142 +42,12 @@ from core.tuning import (
     tuned,
 )
 
-DOLLY_FRAMES = 4  # a camera's frames: it and the same moved on, for cost and popping
-DOLLY_STEP = 0.25  # world units (a quarter of a cell) a frame
 VERIFY_ROUNDS = 5
 VERIFY_AT_MOST = 6  # candidates measured again in turns for one claim
 NOISE = 1.1  # the search's times may be this far off: candidates up to it are measured again
 MAX_CANDIDATES = 150
 BATCH = 6  # proposals nearest the current choice tried before proposing again
 TIME_LIMIT_S = 10 * 60.0  # the search stops proposing after this long
-
-
-def dolly(camera: Camera, frames: int = DOLLY_FRAMES, step: float = DOLLY_STEP) -> list[Camera]:
-    """The camera and the same moved towards its target `step` world units a frame, eye and
-    target alike: the zone boundaries sweep over the ground as when a person walks."""
-    eye, target = np.asarray(camera.eye), np.asarray(camera.target)
-    ahead = target - eye
-    ahead[1] = 0.0  # along the ground
-    ahead /= max(float(np.linalg.norm(ahead)), 1e-9)
-    return [
-        Camera.from_eye_target(
-            eye + k * step * ahead,
-            target + k * step * ahead,
-            fov_y=camera.fov_y,
-            near=camera.near,
-            far=camera.far,
-        )
-        for k in range(frames)
-    ]
-
-
-class TuneRun:
-    """One renderer on one context; per view a sequence of cameras (a camera's dolly, or a
-    path's frames), their references and the shipped setting's regions."""
-
-    def __init__(
-        self,
-        document: Document,
-        size: tuple[int, int],
-        views: list[tuple[str, list[Camera]]],
-        say: Callable[[str], None],
-    ) -> None:
-        from render.context import standalone
-        from render.headless import HeadlessRenderer
-
-        self.document, self.size, self.views, self.say = document, size, views, say
-        self.ctx = standalone()
-        self.renderer = HeadlessRenderer(document, self.ctx)
-        self.shipped = document.lods
-        self.references: list[list[np.ndarray]] = []
-        self.masks: list[list[dict[str, np.ndarray]]] = []
-        self.reused = self.drawn = 0
-
-    def release(self) -> None:
-        self.document.set_lods(self.shipped)
-        self.renderer.release()
-        self.ctx.release()
-
-    # -- what every candidate is compared with -------------------------------------------------
-    def prepare(self) -> None:
-        for name, cameras in self.views:
-            self.say(f"references of {name}: {len(cameras)} frames")
-            refs, masks = [], []
-            for camera in cameras:
-                image, mask = self._reference(camera)
-                refs.append(image)
-                masks.append(mask)
-            self.references.append(refs)
-            self.masks.append(masks)
-
-    def _reference(self, camera: Camera) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        from render.comparison import drawn_as
-        from render.grass_type import technique_colors
-        from render.reference_cache import geometry_frame
-
-        image, drawn = geometry_frame(self.renderer, camera, self.size)
-        self.drawn += drawn
-        self.reused += not drawn
-        shaded, _ = self.renderer.render(camera, self.size, measure=False)
-        with drawn_as(self.renderer.pipeline, view="techniques"):
-            techniques, _ = self.renderer.render(camera, self.size, measure=False)
-        regions = technique_regions(shaded, techniques, technique_colors())
-        return image, {n: quarter_mask(m) for n, m in regions.items() if m.any()}
-
-    # -- one candidate ---------------------------------------------------------------------------
-    def frames(self, knobs: Knobs) -> tuple[list[float], list[list[np.ndarray]], dict]:
-        """Per view the median frame time (ms) and its frames, and the mean counts."""
-        lods = [tuned(lod, knobs) for lod in self.shipped]
-        self.document.set_lods(lods)  # type: ignore[arg-type]
-        costs, images = [], []
-        counts = {"c_g": 0, "c_v": 0, "c_i": 0, "triangles": 0}
-        drawn = 0
-        for _name, cameras in self.views:
-            self.renderer.render(cameras[0], self.size, measure=False)  # new slices convert
-            times, seq = [], []
-            for camera in cameras:
-                image, stats = self.renderer.render(camera, self.size, measure=True)
-                times.append(stats.t_a_ms)
-                seq.append(image)
-                for k in counts:
-                    counts[k] += getattr(stats, k)
-                drawn += 1
-            costs.append(statistics.median(times))
-            images.append(seq)
-        return costs, images, {k: v // max(drawn, 1) for k, v in counts.items()}
-
-    def evaluate(self, knobs: Knobs) -> Candidate | None:
-        if any(tuned(lod, knobs) is None for lod in self.shipped):
-            return None
-        costs, images, counts = self.frames(knobs)
-        flips, regions, pops = [], {}, []
-        for seq, refs, masks in zip(images, self.references, self.masks, strict=True):
-            for image, reference, mask in zip(seq, refs, masks, strict=True):
-                mean, error = flip(reference, image, QUARTER)
-                error = error.reshape(error.shape[0], error.shape[1])
-                flips.append(mean)
-                for name, m in mask.items():
-                    inside = error[m[: error.shape[0], : error.shape[1]]]
-                    regions.setdefault(name, []).append(float(inside.mean()))
-            if len(seq) > 1:
-                pops.append(popping(seq, refs)["popping"])
-        return Candidate(
-            knobs,
-            float(np.mean(costs)),
-            float(np.mean(flips)),
-            {n: float(np.mean(v)) for n, v in regions.items()},
-            max(pops) if pops else None,
-            counts,
-        )
-
-    def in_turns(self, a: Knobs, b: Knobs, rounds: int) -> tuple[float, float]:
-        """Both settings' frame times measured in turns: the medians (ms)."""
-        times: dict[Knobs, list[float]] = {a: [], b: []}
-        for _ in range(rounds):
-            for k in (a, b):
-                costs, _, _ = self.frames(k)
-                times[k].append(float(np.mean(costs)))
-        return statistics.median(times[a]), statistics.median(times[b])
 
 
 def tune(
@@ -196,56 +61,50 @@ def tune(
     max_candidates: int = MAX_CANDIDATES,
     time_limit_s: float = TIME_LIMIT_S,
     say: Callable[[str], None] | None = None,
+    workers: Callable[[tuple], Pool] | None = None,
 ) -> tuple[str, dict]:
     """Search; the printed report and the JSON document. Ctrl+C stops the search and keeps
-    what it found."""
+    what it found. `workers` starts a pool (app/tune_workers.py) from the workers' setup: the
+    references and candidates are then drawn there, and a candidate's cost is predicted from
+    its counts by a model fitted to the first candidates measured here one at a time."""
     say = say or (lambda text: print(text, file=sys.stderr, flush=True))
     started = time.monotonic()
     run = TuneRun(document, size, views, say)
-    candidates: list[Candidate] = []
-    seen: set[Knobs] = set()
-    stopped = ""
+    search = Search(run, budget_ms, quality, max_candidates, say)
+    pool = None
+    stopped, references_s = "", 0.0
     try:
+        if workers is not None:
+            say("starting the workers")
+            pool = workers(run.setup())
+            search.where = pool.where
         prepared = time.monotonic()
-        run.prepare()
+        run.prepare(pool)
         references_s = time.monotonic() - prepared
-        run.evaluate(SHIPPED)  # the first frames after the references run slow: warm up
-        shipped = run.evaluate(SHIPPED)
-        assert shipped is not None
-        candidates.append(shipped)
-        seen.add(SHIPPED)
-        if budget_ms is None and quality is None:
-            budget_ms = shipped.cost_ms
-        say(
-            f"shipped setting: {shipped.cost_ms:.0f} ms, FLIP {shipped.flip:.4f}"
-            + (f", popping {shipped.popping:.2f}" if shipped.popping is not None else "")
-        )
-        queue = [k for k in first_candidates() if k not in seen]
+        if pool is not None:
+            pool.everyone(TuneWorker.set_references, run.references, run.masks)
         try:
-            while queue and len(seen) < max_candidates:
+            search.start()
+            while search.queue and len(search.seen) < max_candidates:
                 if time.monotonic() - started > time_limit_s:
                     stopped = f"time limit {time_limit_s:.0f} s"
                     break
-                knobs = queue.pop(0)
-                seen.add(knobs)
-                found = run.evaluate(knobs)
-                if found is not None:
-                    candidates.append(found)
-                    say(
-                        f"[{len(seen)}/{max_candidates}] {knobs.label()}: "
-                        f"{found.cost_ms:.0f} ms, FLIP {found.flip:.4f}"
-                    )
-                if not queue:
-                    target = choose(
-                        candidates, budget_ms, quality, popping_limit(shipped)
-                    ) or nearest_miss(candidates, budget_ms, quality)
-                    queue = proposals(candidates, seen, target)[:BATCH]
+                search.step(pool)
         except KeyboardInterrupt:
             stopped = "stopped (Ctrl+C)"
             say("stopped: keeping what was found")
-        result = _result(run, document, size, views, path, budget_ms, quality, candidates, shipped)
-        result["stopped"] = stopped or ("no more proposals" if not queue else "candidate limit")
+        if pool is not None:  # the verification measures here, alone
+            pool.close()
+            pool = None
+        if search.shipped is None:
+            raise KeyboardInterrupt
+        result = _result(run, document, size, views, path, search)
+        result["stopped"] = stopped or (
+            "no more proposals" if not search.queue else "candidate limit"
+        )
     finally:
+        if pool is not None:
+            pool.close()
         run.release()
     result["elapsed_s"] = time.monotonic() - started
     result["references_s"] = references_s
@@ -258,7 +117,84 @@ def tune(
     return text, result
 
 
-def _result(run, document, size, views, path, budget_ms, quality, candidates, shipped) -> dict:
+class Search:
+    """The candidates found so far and the next to try. Without workers each is measured
+    here; with them, the first candidates are measured here one at a time (the cost model's
+    frames) and the rest drawn by the workers, their cost predicted from their counts."""
+
+    def __init__(self, run: TuneRun, budget_ms, quality, max_candidates: int, say) -> None:
+        self.run, self.budget_ms, self.quality = run, budget_ms, quality
+        self.max_candidates, self.say = max_candidates, say
+        self.candidates: list[Candidate] = []
+        self.seen: set[Knobs] = set()
+        self.tried = 0  # settings evaluated (or found invalid), the shipped one included
+        self.queue: list[Knobs] = []
+        self.shipped: Candidate | None = None
+        self.model: CostModel | None = None
+        self.where = "this process"
+
+    def start(self) -> None:
+        self.run.evaluate(SHIPPED)  # the first frames after the references run slow: warm up
+        shipped = self.run.evaluate(SHIPPED)
+        assert shipped is not None
+        self.shipped = shipped
+        self._add(SHIPPED, shipped)
+        if self.budget_ms is None and self.quality is None:
+            self.budget_ms = shipped.cost_ms
+        self.say(
+            f"shipped setting: {shipped.cost_ms:.0f} ms, FLIP {shipped.flip:.4f}"
+            + (f", popping {shipped.popping:.2f}" if shipped.popping is not None else "")
+        )
+        self.queue = [k for k in first_candidates() if k not in self.seen]
+
+    def step(self, pool: Pool | None) -> None:
+        """Evaluate the next batch; propose more when the queue runs out."""
+        if pool is None or self.model is None:  # here, one at a time
+            knobs = self.queue.pop(0)
+            self._add(knobs, self.run.evaluate(knobs))
+            if pool is not None and not self.queue:
+                measured = [c for c in self.candidates if not c.predicted]
+                self.model = CostModel.fit(
+                    [c.counts for c in measured], [c.cost_ms for c in measured]
+                )
+                self.say(
+                    f"cost model from {len(measured)} settings measured here: "
+                    f"{self.model.loo_error:.1%} off, each left out of its fit"
+                )
+        else:
+            room = self.max_candidates - len(self.seen)
+            batch = self.queue[: min(max(BATCH, len(pool)), room)]
+            del self.queue[: len(batch)]
+            self.seen.update(batch)
+            for i, found in pool.map(TuneWorker.evaluate, [(k,) for k in batch]):
+                if found is not None:
+                    found = dataclasses.replace(
+                        found, cost_ms=self.model.predict(found.counts), predicted=True
+                    )
+                self._add(batch[i], found)
+        if not self.queue:
+            target = choose(
+                self.candidates, self.budget_ms, self.quality, popping_limit(self.shipped)
+            ) or nearest_miss(self.candidates, self.budget_ms, self.quality)
+            self.queue = proposals(self.candidates, self.seen, target)[:BATCH]
+
+    def _add(self, knobs: Knobs, found: Candidate | None) -> None:
+        self.seen.add(knobs)
+        self.tried += 1
+        if found is None:
+            return
+        self.candidates.append(found)
+        if knobs != SHIPPED:
+            self.say(
+                f"[{self.tried}/{self.max_candidates}] {knobs.label()}: "
+                f"{found.cost_ms:.0f} ms{' (predicted)' if found.predicted else ''}, "
+                f"FLIP {found.flip:.4f}"
+            )
+
+
+def _result(run, document, size, views, path, search: Search) -> dict:
+    candidates, shipped = search.candidates, search.shipped
+    budget_ms, quality = search.budget_ms, search.quality
     checks = Checks(run, shipped, budget_ms)
     chosen = _chosen(candidates, budget_ms, quality, checks, popping_limit(shipped))
     result: dict = {
@@ -275,6 +211,8 @@ def _result(run, document, size, views, path, budget_ms, quality, candidates, sh
         "candidates": [c.to_dict() for c in candidates],
         "front": [candidates.index(c) for c in front(candidates)],
         "chosen": None if chosen is None else candidates.index(chosen),
+        "workers": search.where,
+        "cost_model": None if search.model is None else search.model.to_dict(),
     }
     if budget_ms is not None and budget_ms >= shipped.cost_ms:
         # the chosen setting where it beats the shipped one in every figure, else the cheapest
@@ -320,6 +258,9 @@ class Checks:
                 "allowed_ms": allowed,
                 "rounds": VERIFY_ROUNDS,
                 "holds": ms <= allowed,
+                # the search's time for it, predicted or measured, as the machine runs now
+                "search_ms": c.cost_ms * shipped_ms / self.shipped.cost_ms,
+                "predicted": c.predicted,
             }
             self.run.say(
                 f"measured in turns: {c.knobs.label()} {ms:.0f} ms, shipped {shipped_ms:.0f} "

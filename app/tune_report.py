@@ -28,6 +28,13 @@ def report(result: dict) -> str:
         f"({result.get('references_s', 0):.0f} s)",
         f"  shipped: {_figures(result['shipped'])}",
     ]
+    model = result.get("cost_model")
+    if model is not None:
+        lines.append(
+            f"  drawn by {result['workers']}; costs predicted from counts by a model of "
+            f"{model['points']} settings measured here ({model['leave_one_out_error']:.1%} off "
+            "on each left out of its fit)"
+        )
     if result["chosen"] is None:
         lines.append("  nothing tried meets the target")
     else:
@@ -39,6 +46,7 @@ def report(result: dict) -> str:
             f"  measured in turns ({v['rounds']} rounds): {Knobs(**c['knobs']).label()} "
             f"{v['ms']:.0f} ms against shipped {v['shipped_ms']:.0f} ms, allowed "
             f"{v['allowed_ms']:.0f} ms: {'holds' if v['holds'] else 'over'}"
+            + (f" (predicted {v['search_ms']:.0f} ms)" if v.get("predicted") else "")
         )
     better = result.get("better_than_shipped")
     if better is not None:

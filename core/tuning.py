@@ -126,6 +126,7 @@ class Candidate:
     regions: dict[str, float] = field(default_factory=dict)  # technique -> mean FLIP there
     popping: float | None = None  # along the path: largest change over the reference's
     counts: dict = field(default_factory=dict)  # instances and triangles per frame
+    predicted: bool = False  # cost_ms from the cost model (core/cost_model.py), not measured
 
     def to_dict(self) -> dict:
         return {
@@ -135,6 +136,7 @@ class Candidate:
             "regions": self.regions,
             "popping": self.popping,
             "counts": self.counts,
+            "predicted": self.predicted,
         }
 
 

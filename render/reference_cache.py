@@ -104,15 +104,21 @@ def _prune(folder: Path) -> None:
 def geometry_frame(renderer, camera: Camera, size: tuple[int, int]) -> tuple[np.ndarray, bool]:
     """The all-geometry frame of `renderer`'s document (a HeadlessRenderer) at this camera and
     the pipeline's wind moment: the kept one, or drawn and kept; and whether it was drawn."""
-    from core.view_mode import ViewMode
-    from render.comparison import drawn_as
-
-    pipeline = renderer.pipeline
-    name = key(renderer.binding.document, camera, size, pipeline.time)
+    name = key(renderer.binding.document, camera, size, renderer.pipeline.time)
     image = load(name, size)
     if image is not None:
         return image, False
-    with drawn_as(pipeline, ViewMode.GEOMETRY):
-        image, _ = renderer.render(camera, size, measure=False)
+    image = draw(renderer, camera, size)
     save(name, image)
     return image, True
+
+
+def draw(renderer, camera: Camera, size: tuple[int, int]) -> np.ndarray:
+    """The all-geometry frame drawn now, not kept (a worker of `sward tune` draws it; the
+    search keeps it where it runs)."""
+    from core.view_mode import ViewMode
+    from render.comparison import drawn_as
+
+    with drawn_as(renderer.pipeline, ViewMode.GEOMETRY):
+        image, _ = renderer.render(camera, size, measure=False)
+    return image

@@ -1,0 +1,110 @@
+"""`sward tune --workers N` and `--ray ADDRESS` as a user runs them: the references and the
+candidates drawn in other processes, gathered here (references kept, candidates in the front),
+costs predicted by a model fitted here, claims measured here."""
+
+import json
+import os
+import secrets
+import socket
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import pytest
+
+from tests.test_cli import sward
+from tests.test_tune_cli import SMALL
+
+
+def _check_sweep(r, out: Path, cache: Path, where: str) -> None:
+    assert r.returncode == 0, r.stderr
+    assert f"drawn by {where}" in r.stdout
+    assert "references 4 drawn, 0 reused" in r.stdout
+    assert len(list((cache / "references").glob("geometry-*.png"))) == 4  # kept here
+    result = json.loads((out / "tune.json").read_text())
+    predicted = [c for c in result["candidates"] if c["predicted"]]
+    measured = [c for c in result["candidates"] if not c["predicted"]]
+    # the shipped setting and each knob a step either way, measured here, fit the model;
+    # the rest were drawn by the workers and their cost predicted from their counts
+    assert len(measured) >= 8 and predicted
+    model = result["cost_model"]
+    assert model["points"] == len(measured) and 0 <= model["leave_one_out_error"] < 0.5
+    assert all(c["counts"]["triangles"] > 0 and c["flip_quarter"] > 0 for c in predicted)
+    # a setting that draws the geometry zone further costs more, and the model says so
+    near = {c["knobs"]["near"]: c["cost_ms"] for c in predicted if c["knobs"]["macro"] == 0}
+    if 1.25 in near and 0.8 in near:
+        assert near[1.25] > near[0.8]
+    # what is claimed was measured here, alone, in turns with the shipped setting
+    assert result["verified"] and all("search_ms" in v for v in result["verified"])
+
+
+def test_workers_draw_the_references_and_candidates_and_the_run_gathers_them(tmp_path):
+    cache, out = tmp_path / "cache", tmp_path / "out"
+    env = {**os.environ, "SWARD_CACHE": str(cache)}
+    r = sward("tune", *SMALL, "--candidates", "16", "--workers", "2", "--out", str(out), env=env)
+    _check_sweep(r, out, cache, "2 local processes")
+    again = sward("tune", *SMALL, "--candidates", "2", "--workers", "2", env=env)
+    assert again.returncode == 0, again.stderr
+    assert "references 0 drawn, 4 reused" in again.stdout
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_a_sweep_runs_on_a_ray_cluster_the_test_starts(tmp_path):
+    pytest.importorskip("ray", reason="the optional extra sward[cluster]; make test installs it")
+    ray = Path(os.environ.get("VIRTUAL_ENV", Path(os.sys.executable).parent.parent)) / "bin/ray"
+    port = _free_port()
+    # a cluster with token authentication, as Ray starts them by default: the token is the
+    # cluster's and the user's environment gives it to the run
+    env = {
+        **os.environ,
+        "RAY_AUTH_MODE": "token",
+        "RAY_AUTH_TOKEN": secrets.token_hex(32),
+        "SWARD_CACHE": str(tmp_path / "cache"),
+    }
+    # Ray's socket paths must stay short: a folder under /tmp rather than pytest's
+    with tempfile.TemporaryDirectory(prefix="ray", dir="/tmp") as temp:
+        head = subprocess.Popen(
+            [
+                str(ray), "start", "--head", "--block", f"--port={port}", "--num-cpus=2",
+                "--include-dashboard=false", "--disable-usage-stats", f"--temp-dir={temp}",
+            ],
+            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        )  # fmt: skip
+        try:
+            deadline = time.monotonic() + 90
+            while True:
+                try:
+                    socket.create_connection(("127.0.0.1", port), timeout=1).close()
+                    break
+                except OSError:
+                    assert head.poll() is None and time.monotonic() < deadline, "no Ray head"
+                    time.sleep(0.5)
+            out = tmp_path / "out"
+            r = sward(
+                "tune", *SMALL, "--candidates", "16", "--ray", f"127.0.0.1:{port}",
+                "--out", str(out), env=env,
+            )  # fmt: skip
+            _check_sweep(r, out, tmp_path / "cache", f"2 Ray workers at 127.0.0.1:{port}")
+        finally:
+            head.terminate()  # --block: the head stops the processes it started
+            head.wait(timeout=60)
+
+
+@pytest.mark.parametrize(
+    "args,words",
+    [
+        (("--workers", "0"), "--workers 0 out of range"),
+        (("--workers", "2", "--ray", "127.0.0.1:1"), "not allowed with argument"),
+        (("--ray", f"127.0.0.1:{_free_port()}"), "no Ray cluster answers there"),
+    ],
+)
+def test_tune_refuses_workers_it_cannot_use_in_one_line(args, words):
+    r = sward("tune", *SMALL, *args)
+    assert r.returncode == 2
+    assert words in r.stderr and "Traceback" not in r.stderr
