@@ -49,4 +49,5 @@ def quality_text(figures: dict) -> str:
         f"{', '.join(parts) or 'no grass'}) · block colour {lod['block_color']:.3f} · "
         f"LOD {figures['lod_ms']:.0f} ms, all-geometry {figures['geometry_ms']:.0f} ms "
         f"({figures['speedup']:.1f}x faster)"
+        + (" · all-geometry frame kept from before" if figures.get("reference_kept") else "")
     )

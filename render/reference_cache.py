@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 from functools import lru_cache
 from pathlib import Path
@@ -23,6 +24,7 @@ from core.document import Document
 from render import derived_cache
 
 MAX_BYTES = 128 * 2**20
+TIME_KEY = "sward:geometry_ms"  # the PNG text that holds how long the frame took to draw
 _SKIP = ("lod", "name", "description", "cameras", "default_camera", "paths")
 
 
@@ -50,7 +52,8 @@ def key(document: Document, camera: Camera, size: tuple[int, int], time: float) 
     digest.update(json.dumps(data, sort_keys=True, default=str).encode())
     digest.update(np.ascontiguousarray(document.maps.stack).tobytes())
     view = (tuple(camera.eye), tuple(camera.target), camera.fov_y, camera.near, camera.far)
-    digest.update(repr((view, tuple(size), float(time))).encode())
+    moment = float(time) if document.wind.enabled else 0.0  # still grass: any moment is one
+    digest.update(repr((view, tuple(size), moment)).encode())
     return digest.hexdigest()
 
 
@@ -68,6 +71,13 @@ def _path(name: str) -> Path | None:
 
 def load(name: str, size: tuple[int, int]) -> np.ndarray | None:
     """The reference kept under `name` as (h, w, 3) uint8, or None."""
+    kept = load_timed(name, size)
+    return None if kept is None else kept[0]
+
+
+def load_timed(name: str, size: tuple[int, int]) -> tuple[np.ndarray, float | None] | None:
+    """The reference kept under `name` and how long it took to draw (ms) where that was
+    measured, or None."""
     from PIL import Image
 
     path = _path(name)
@@ -77,20 +87,26 @@ def load(name: str, size: tuple[int, int]) -> np.ndarray | None:
         with Image.open(path, formats=["PNG"]) as image:
             if image.size != tuple(size) or image.mode != "RGB":
                 return None
-            return np.asarray(image).copy()
-    except (OSError, ValueError):  # not whole, not an image
+            text = getattr(image, "text", {}).get(TIME_KEY)
+            ms = float(text) if text is not None else None
+            return np.asarray(image).copy(), ms if ms is None or math.isfinite(ms) else None
+    except (OSError, ValueError):  # not whole, not an image, a time that is no number
         return None
 
 
-def save(name: str, image: np.ndarray) -> None:
-    from PIL import Image
+def save(name: str, image: np.ndarray, ms: float | None = None) -> None:
+    """Keep `image` under `name`, with the time it took to draw when `ms` gives it."""
+    from PIL import Image, PngImagePlugin
 
     path = _path(name)
     if path is None:
         return
     partial = path.with_name(f".{path.name}.{os.getpid()}")
+    info = PngImagePlugin.PngInfo()
+    if ms is not None:
+        info.add_text(TIME_KEY, f"{ms:.3f}")
     try:
-        Image.fromarray(image).save(partial, format="PNG")
+        Image.fromarray(image).save(partial, format="PNG", pnginfo=info)
         os.replace(partial, path)
         _prune(path.parent)
     except OSError:
@@ -108,17 +124,21 @@ def geometry_frame(renderer, camera: Camera, size: tuple[int, int]) -> tuple[np.
     image = load(name, size)
     if image is not None:
         return image, False
-    image = draw(renderer, camera, size)
-    save(name, image)
+    image, ms = _drawn(renderer, camera, size)
+    save(name, image, ms)
     return image, True
 
 
 def draw(renderer, camera: Camera, size: tuple[int, int]) -> np.ndarray:
     """The all-geometry frame drawn now, not kept (a worker of `sward tune` draws it; the
     search keeps it where it runs)."""
+    return _drawn(renderer, camera, size)[0]
+
+
+def _drawn(renderer, camera: Camera, size: tuple[int, int]) -> tuple[np.ndarray, float]:
     from core.view_mode import ViewMode
     from render.comparison import drawn_as
 
     with drawn_as(renderer.pipeline, ViewMode.GEOMETRY):
-        image, _ = renderer.render(camera, size, measure=False)
-    return image
+        image, stats = renderer.render(camera, size, measure=True)
+    return image, stats.t_a_ms

@@ -168,7 +168,9 @@ class RenderServer:
     def _quality(self, camera, fbo, size: tuple[int, int], abort):
         """The frame against an all-geometry reference (render/comparison.py): the heat map of
         their difference (RGBA) and the figures."""
-        compared = lod_against_geometry(self.pipeline, camera, fbo, size, abort)
+        compared = lod_against_geometry(
+            self.pipeline, camera, fbo, size, abort, document=self.document
+        )
         heat = compared.heat_map()
         image = np.zeros((size[1], size[0], 4), np.uint8)
         image[: heat.shape[0], : heat.shape[1], :3] = heat
