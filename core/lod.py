@@ -22,7 +22,12 @@ ALL_IN = 2.0  # w for a cell wholly inside one zone: every blade passes eq. 5.26
 
 
 def linearstep(e1: float, e2: float, x):
-    return np.clip((np.asarray(x, dtype=np.float64) - e1) / (e2 - e1), 0.0, 1.0)
+    """0 below e1, 1 above e2, linear between; with e1 = e2 (a level ending where the next
+    begins: no transition) a step at e1."""
+    x = np.asarray(x, dtype=np.float64)
+    if e2 <= e1:
+        return np.where(x < e1, 0.0, 1.0)
+    return np.clip((x - e1) / (e2 - e1), 0.0, 1.0)
 
 
 def smoothstep(e1, e2, x):

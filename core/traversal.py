@@ -319,7 +319,10 @@ def _node_distances(eye, x0, z0, x1, z1):
 
 @numba.njit(cache=True)
 def _weight_near(d, e1, e2):
-    """w_1(d) = 1 − linearstep(e1, e2, d) (eq. 5.23), as core/lod.weight_near."""
+    """w_1(d) = 1 − linearstep(e1, e2, d) (eq. 5.23), as core/lod.weight_near (a step at e1
+    where a level ends as the next begins)."""
+    if e2 <= e1:
+        return 1.0 if d < e1 else 0.0
     return 1.0 - min(max((d - e1) / (e2 - e1), 0.0), 1.0)
 
 

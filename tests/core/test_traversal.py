@@ -212,3 +212,24 @@ def test_hilltops_seen_from_below_get_volume_silhouettes():
     assert traverse(terrain, high_eye, with_tops).levels[1].size == (
         traverse(terrain, high_eye, plain).levels[1].size
     )
+
+
+@pytest.mark.parametrize("ex", [0.0, 10.0, 10.5, 23.7])
+def test_a_hand_over_without_transition_switches_at_its_distance(ex):
+    """A level that ends where the next begins (a person typed End = the next Begin): no
+    transition, every cell in exactly one level, the same cells as brute force, and no
+    division by the zero width (it stopped the render processes)."""
+    hard = LodConfig(
+        (
+            LodLevel("geometry", 0.0, 5.0, 8, 1),
+            LodLevel("volume", 5.0, 12.0, 8, 4),
+            LodLevel("image", 12.0, None, 8, 16),
+        )
+    )
+    terrain, eye = Terrain(40, 40), np.array([ex, 1.5, 20.0])
+    check_equal(terrain, eye, without_macro(hard))
+    check_blades_once(terrain, eye, hard)
+    for level, drawn in zip(hard.levels, select(terrain.all_cells(), eye, hard), strict=True):
+        lod = drawn["lod"]
+        assert np.isfinite(lod).all(), level
+        assert ((lod[:, 1] == 0) & (lod[:, 0] >= 1) | (lod[:, 1] == 1) & (lod[:, 0] <= 0)).all()
