@@ -80,7 +80,7 @@ class GrassViewport(QWidget):
             on_show=self._show,
             on_quality=self._show_quality,
             on_quality_asked=lambda: self.status_changed.emit(
-                "quality: drawing the all-geometry reference"
+                "quality: comparing with all-geometry (drawn once, then kept)"
             ),
             before_request=self._zone_rings,
         )
