@@ -30,7 +30,12 @@ lint: $(STAMP)
 	$(VENV)/bin/mypy
 	$(VENV)/bin/vulture
 
-test: system-deps lint $(EXTRAS)
+# the Khronos glTF validator (npm), which tests/test_export.py runs on every export
+VALIDATOR := $(VENV)/node/node_modules/gltf-validator/package.json
+$(VALIDATOR):
+	npm install --silent --no-audit --no-fund --prefix $(VENV)/node gltf-validator@2.0.0-dev.3.10
+
+test: system-deps lint $(EXTRAS) $(VALIDATOR)
 	$(VENV)/bin/sward info
 	# core/ and the designer's controllers with Qt and GL unimportable (tests/blocked.py)
 	$(PY) -m pytest -n 2 -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app

@@ -9,6 +9,7 @@ import os
 import sys
 from pathlib import Path
 
+from app.cli_export import cmd_export
 from app.cli_input import (
     CliError,
     document_of,
@@ -243,6 +244,7 @@ def main(argv: list[str] | None = None) -> int:
         "bench": cmd_bench,
         "quality": cmd_quality,
         "tune": cmd_tune,
+        "export": cmd_export,
     }[args.command]
     name = f"sward {args.command}" if args.command else "sward"
     try:

@@ -262,6 +262,13 @@ def parser() -> argparse.ArgumentParser:
 
     tune_options(t)
 
+    e = sub.add_parser(
+        "export", parents=[document], help="write the design for engines and 3D tools"
+    )
+    from app.cli_export import export_options
+
+    export_options(e)
+
     sub.add_parser("scenes", help="list built-in scenes and their cameras")
     sub.add_parser("info", help="print the OpenGL renderer Sward runs on")
     b = sub.add_parser("bench", help="run the benchmarks and write JSON")

@@ -1,0 +1,130 @@
+"""`sward export` as a user runs it: glTF that the Khronos validator passes for every built-in
+scene, read back by the library (counts, the patch's vertices, instances per cell with grass),
+the design maps bit for bit, the settings, and bad input refused in one line."""
+
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pygltflib
+import pytest
+
+from app.export import quantized
+from app.scenes import SCENES, get_scene
+from core.design_maps import LAYERS
+from core.export_grass import grass_cells
+from core.patch import generate_patch
+from tests.test_cli import sward
+
+ROOT = Path(__file__).resolve().parents[1]
+VALIDATOR = ROOT / ".venv" / "node" / "node_modules" / "gltf-validator"
+
+
+def _validate(path: Path) -> dict:
+    if shutil.which("node") is None or not VALIDATOR.is_dir():
+        pytest.skip("the glTF validator: make test installs node and npm's gltf-validator")
+    run = subprocess.run(
+        ["node", str(ROOT / "tests" / "tools" / "gltf_validate.js"), str(VALIDATOR), str(path)],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout)["issues"]
+
+
+@pytest.mark.parametrize("scene", sorted(SCENES))
+def test_every_scene_exports_glTF_the_khronos_validator_passes(scene, tmp_path):
+    out = tmp_path / scene
+    r = sward("export", "--scene", scene, "--out", str(out), "--what", "patch,instances,terrain")
+    assert r.returncode == 0, r.stderr
+    issues = _validate(out / "grass.gltf")
+    assert (issues["numErrors"], issues["numWarnings"]) == (0, 0), issues["messages"][:5]
+
+
+def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
+    out = tmp_path / "meadow"
+    r = sward("export", "--scene", "meadow", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    document = get_scene("meadow").document()
+    gltf = pygltflib.GLTF2().load(str(out / "grass.gltf"))
+    assert "EXT_mesh_gpu_instancing" in gltf.extensionsUsed
+    grows = grass_cells(document)
+    data = (out / "grass.bin").read_bytes()
+
+    def read(index: int, width: int) -> np.ndarray:
+        a = gltf.accessors[index]
+        view = gltf.bufferViews[a.bufferView]
+        raw = np.frombuffer(data, np.float32, a.count * width, view.byteOffset + a.byteOffset)
+        return raw.reshape(a.count, width)
+
+    for index, kind in enumerate(document.grass_types):
+        patch = generate_patch(kind.params)
+        (holder,) = [n for n in gltf.nodes if n.name == f"grass {kind.name}"]
+        blocks = [gltf.nodes[c] for c in holder.children]
+        mesh = gltf.meshes[blocks[0].mesh]
+        attributes = mesh.primitives[0].attributes
+        assert gltf.accessors[attributes.POSITION].count == len(patch.vertices)
+        threshold = read(attributes._THRESHOLD, 1)[:, 0]
+        assert np.array_equal(threshold, patch.vertices["threshold"])
+        translations = np.concatenate(
+            [read(b.extensions["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"], 3)
+             for b in blocks]
+        )  # fmt: skip
+        scales = np.concatenate(
+            [read(b.extensions["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"], 3)
+             for b in blocks]
+        )  # fmt: skip
+        # one instance per cell with grass of this type, each on its own cell
+        assert 0 < len(translations) == grows[index].sum()
+        spec = document.terrain_spec
+        corner = translations[:, [0, 2]] - 0.5 + 0.5 * scales[:, [0, 2]]
+        ix, iz = np.round(corner + np.array([spec.columns / 2, spec.rows / 2])).astype(int).T
+        assert grows[index][ix, iz].all() and len(set(zip(ix, iz, strict=True))) == len(ix)
+        assert set(np.unique(scales[:, [0, 2]])) == {-1.0, 1.0}  # the tiling's mirror bits
+        # each stands at the ground's height at its cell's centre, on the meadow's hills
+        centre = corner[:50] + 0.5
+        ground = [document.ground_at(x, z) for x, z in centre]
+        assert np.allclose(translations[:50, 1], ground, atol=1e-4) and np.std(ground) > 0
+    # the tall grass grows in clumps: not on every cell
+    assert grows[1].sum() < grows[1].size
+
+    for layer in LAYERS:
+        import OpenEXR
+        import png
+
+        values = document.maps.layer(layer.name)[..., : layer.channels]
+        with (out / "maps" / f"{layer.name}.png").open("rb") as f:
+            w, h, rows, info = png.Reader(file=f).read()
+            pixels = np.vstack([np.asarray(row, np.uint16) for row in rows])
+        assert info["bitdepth"] == 16 and (w, h) == document.maps.size
+        assert np.array_equal(pixels.reshape(values.shape), quantized(values)), layer.name
+        with OpenEXR.File(str(out / "maps" / f"{layer.name}.exr")) as exr:
+            stored = next(iter(exr.channels().values())).pixels
+        assert np.array_equal(np.asarray(stored).reshape(values.shape), values), layer.name
+    r16 = np.fromfile(out / "maps" / "height.r16", "<u2").reshape(document.maps.size[::-1])
+    assert np.array_equal(r16, quantized(document.maps.layer("height")[..., 0]))
+
+    settings = json.loads((out / "settings.json").read_text())
+    assert [g["name"] for g in settings["grass"]] == document.grass_names
+    assert settings["grass"][0]["lod"][0]["representation"] == "geometry"
+
+
+@pytest.mark.parametrize(
+    "args,words",
+    [
+        (("--what", "patch,trees"), "trees is not one of"),
+        (("--format", "fbx"), "invalid choice: 'fbx'"),
+    ],
+)
+def test_export_refuses_bad_input_in_one_line(tmp_path, args, words):
+    r = sward("export", "--scene", "patch-grid", "--out", str(tmp_path / "x"), *args)
+    assert r.returncode == 2 and words in r.stderr and "Traceback" not in r.stderr
+
+
+def test_an_export_into_a_file_not_a_folder_is_refused(tmp_path):
+    taken = tmp_path / "taken"
+    taken.write_text("mine")
+    r = sward("export", "--scene", "patch-grid", "--out", str(taken))
+    assert r.returncode == 2 and "not a folder" in r.stderr
+    assert taken.read_text() == "mine"
