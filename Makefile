@@ -11,10 +11,11 @@ $(STAMP): pyproject.toml
 
 setup: $(STAMP)
 
-# the optional extras (sward[cluster]: Ray) stay out of `make run`; their tests need them
+# the optional extras (sward[cluster]: Ray, sward[usd]: usd-core) stay out of `make run`;
+# their tests need them
 EXTRAS := $(VENV)/.sward-extras
 $(EXTRAS): $(STAMP)
-	$(PY) -m pip install --quiet -e '.[test,cluster]'
+	$(PY) -m pip install --quiet -e '.[test,cluster,usd]'
 	@touch $(EXTRAS)
 
 system-deps:

@@ -14,7 +14,10 @@ def export_options(e: argparse.ArgumentParser) -> None:
 
     e.add_argument("--out", type=Path, required=True, help="folder to write the export into")
     e.add_argument(
-        "--format", choices=("gltf",), default="gltf", help="glTF 2.0 with instancing (default)"
+        "--format",
+        choices=("gltf", "usd"),
+        default="gltf",
+        help="glTF 2.0 with instancing (default) or USD point instancers (sward[usd])",
     )
     e.add_argument(
         "--what",
@@ -36,17 +39,22 @@ def cmd_export(args: argparse.Namespace) -> int:
     out_folder(args.out, "grass.gltf")
     start = time.monotonic()
     try:
-        written = export(document, args.out, what, say=print)
+        written = export(document, args.out, what, say=print, format=args.format)
     except ExportError as exc:
         raise CliError(str(exc)) from None
-    gltf = written.get("gltf")
-    if gltf is not None:
-        per_type = ", ".join(f"{n} {c}" for n, c in gltf["instances"].items())
+    meshes = written.get("gltf") or written.get("usd")
+    if meshes is not None:
+        name = "grass.gltf" if "gltf" in written else "grass.usda"
+        per_type = ", ".join(f"{n} {c}" for n, c in meshes["instances"].items())
         print(
-            f"{args.out / 'grass.gltf'}: {len(gltf['vertices'])} patch meshes"
-            + (f", instances {per_type} in {gltf['blocks']} blocks" if per_type else "")
-            + (f", terrain {gltf['ground_vertices']} vertices" if "ground_vertices" in gltf else "")
-            + f", {gltf['bytes'] / 2**20:.1f} MB of buffer"
+            f"{args.out / name}: {len(meshes['vertices'])} patch meshes"
+            + (f", instances {per_type} in {meshes['blocks']} blocks" if per_type else "")
+            + (
+                f", terrain {meshes['ground_vertices']} vertices"
+                if "ground_vertices" in meshes
+                else ""
+            )
+            + (f", {meshes['bytes'] / 2**20:.1f} MB of buffer" if "bytes" in meshes else "")
         )
     if "maps" in written:
         print(f"{args.out / 'maps'}: {len(written['maps'])} files")

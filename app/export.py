@@ -101,13 +101,23 @@ def export(
     out: Path,
     what: tuple[str, ...] = WHAT,
     say: Callable[[str], None] = lambda _text: None,
+    format: str = "gltf",
 ) -> dict:
-    """Write the export into `out` (made if missing); what was written, with counts."""
+    """Write the export into `out` (made if missing); what was written, with counts. The
+    meshes and instances go to glTF or, with format="usd", to USD (app/export_usd.py)."""
     out.mkdir(parents=True, exist_ok=True)
-    written: dict = {"folder": str(out), "what": list(what)}
+    written: dict = {"folder": str(out), "what": list(what), "format": format}
     try:
         if {"patch", "instances", "terrain"} & set(what):
-            written["gltf"] = _gltf(document, out, what, say)
+            if format == "usd":
+                from app.export_usd import UsdMissing, export_usd
+
+                try:
+                    written["usd"] = export_usd(document, out, what, say)
+                except UsdMissing as exc:
+                    raise ExportError(str(exc)) from None
+            else:
+                written["gltf"] = _gltf(document, out, what, say)
         if "maps" in what:
             written["maps"] = _maps(document, out / "maps", say)
         if "lod" in what:
@@ -255,7 +265,7 @@ def _maps(document, folder: Path, say) -> list[str]:
     names.append("height.r16")
     density = document.maps.layer("density")
     for kind in document.grass_types:
-        name = f"density-{_file_name(kind.name)}.r16"
+        name = f"density-{file_name(kind.name)}.r16"
         write_map(folder / name, density[..., kind.channel : kind.channel + 1])
         names.append(name)
     say(f"maps: {len(names)} files")
@@ -294,7 +304,7 @@ def _exr(path: Path, values: np.ndarray) -> None:
         f.write(str(path))
 
 
-def _file_name(name: str) -> str:
+def file_name(name: str) -> str:
     safe = "".join(c if c.isalnum() or c in "-_" else "-" for c in name).strip("-")
     return safe or "grass"
 

@@ -128,3 +128,37 @@ def test_an_export_into_a_file_not_a_folder_is_refused(tmp_path):
     r = sward("export", "--scene", "patch-grid", "--out", str(taken))
     assert r.returncode == 2 and "not a folder" in r.stderr
     assert taken.read_text() == "mine"
+
+
+def test_usd_lists_each_types_patch_and_its_instances(tmp_path):
+    pytest.importorskip("pxr", reason="the optional extra sward[usd]; make test installs it")
+    from pxr import Usd, UsdGeom
+
+    out = tmp_path / "usd"
+    r = sward("export", "--scene", "meadow", "--format", "usd", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    document = get_scene("meadow").document()
+    stage = Usd.Stage.Open(str(out / "grass.usda"))  # every payload loaded
+    assert UsdGeom.GetStageUpAxis(stage) == "Y"
+    for index, kind in enumerate(document.grass_types):
+        holder = stage.GetPrimAtPath(f"/World/{kind.name.replace(' ', '_')}")
+        instancers = [UsdGeom.PointInstancer(p) for p in holder.GetChildren()]
+        assert instancers and all(i for i in instancers)
+        count = sum(len(i.GetProtoIndicesAttr().Get()) for i in instancers)
+        assert count == grass_cells(document)[index].sum()
+        (target,) = instancers[0].GetPrototypesRel().GetTargets()
+        patch = UsdGeom.Mesh(stage.GetPrimAtPath(target))
+        assert len(patch.GetPointsAttr().Get()) == len(generate_patch(kind.params).vertices)
+        assert UsdGeom.PrimvarsAPI(patch).GetPrimvar("threshold").GetInterpolation() == "vertex"
+    terrain = UsdGeom.Mesh(stage.GetPrimAtPath("/World/Terrain"))
+    assert len(terrain.GetPointsAttr().Get()) == (document.terrain_spec.columns + 1) ** 2
+
+
+def test_usd_without_usd_core_says_what_to_install(tmp_path, monkeypatch):
+    import sys
+
+    from app.export import ExportError, export
+
+    monkeypatch.setitem(sys.modules, "pxr", None)  # as where usd-core is not installed
+    with pytest.raises(ExportError, match=r"pip install 'sward\[usd\]'"):
+        export(get_scene("patch-grid").document(), tmp_path, ("patch",), format="usd")
