@@ -149,7 +149,10 @@ def _gltf(document, out: Path, what: tuple[str, ...], say) -> dict:
             continue
         total = 0
         spec = document.terrain_spec
-        for block in blocks(spec.columns, spec.rows):
+        every = list(blocks(spec.columns, spec.rows))
+        for done, block in enumerate(every, 1):
+            if done % max(1, len(every) // 20) == 0:
+                say(f"{kind.name}: blocks {done}/{len(every)}")
             translation, scale = block_instances(document, grows[index], block, heights)
             if translation.shape[0] == 0:
                 continue

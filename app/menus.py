@@ -5,6 +5,7 @@ from __future__ import annotations
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence
 
 from app import view_settings
+from app.export_job import open_export
 from app.image_output import save_image_dialog
 from app.scenes import SCENES, get_scene
 from core.view_mode import ViewMode
@@ -55,6 +56,7 @@ def _file_menu(w) -> None:
             _action(w, "&Save project", QKeySequence.StandardKey.Save, w.projects.save),
             _action(w, "Save project &as…", "Ctrl+Shift+S", lambda: w.projects.save_as()),
             _action(w, "Save &image…", "Ctrl+E", lambda: save_image_dialog(w)),
+            _action(w, "E&xport…", "Ctrl+Shift+E", lambda: open_export(w)),
             _action(w, "&Quit", QKeySequence.StandardKey.Quit, w.close),
         ]
     )
