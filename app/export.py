@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from core.export_grass import block_instances, blocks, grass_cells, ground_mesh, patch_mesh
-from core.patch import generate_patch
+from core.patch import blade_texture, generate_patch
 
 WHAT = ("patch", "instances", "terrain", "maps", "lod")
 GROUND_VERTICES = 513  # the terrain mesh's vertices along its longer side, at most
@@ -60,6 +60,7 @@ class _Gltf:
         self.doc = g.GLTF2(asset=g.Asset(generator="Sward", version="2.0"))
         self.doc.scenes = [g.Scene(nodes=[])]
         self.doc.scene = 0
+        self.folder = folder
         self.buffer = _Buffer(folder / "grass.bin")
 
     def accessor(self, data: np.ndarray, kind: str, target: int | None = None, bounds=False) -> int:
@@ -184,6 +185,8 @@ def _gltf(document, out: Path, what: tuple[str, ...], say) -> dict:
 
 
 def _patch_mesh(gltf: _Gltf, kind) -> int:
+    from render.geometry import GeometryRenderer
+
     g = gltf.g
     m = patch_mesh(generate_patch(kind.params))
     attributes = g.Attributes(
@@ -192,13 +195,20 @@ def _patch_mesh(gltf: _Gltf, kind) -> int:
         COLOR_0=gltf.accessor(m["color"], "VEC3", ARRAY_BUFFER),
         TEXCOORD_0=gltf.accessor(m["uv"], "VEC2", ARRAY_BUFFER),
     )
-    # the density threshold of each vertex's blade: an application-specific attribute
+    # each vertex's blade: its density threshold and root, application-specific attributes
     attributes._THRESHOLD = gltf.accessor(m["threshold"], "SCALAR", ARRAY_BUFFER)
+    attributes._ROOT = gltf.accessor(m["root"], "VEC2", ARRAY_BUFFER)
     gltf.doc.materials.append(
         g.Material(
             name=f"grass {kind.name}",
             doubleSided=True,  # a blade is one quad strip seen from both sides
-            pbrMetallicRoughness=g.PbrMetallicRoughness(metallicFactor=0.0, roughnessFactor=0.9),
+            alphaMode="MASK",  # the blade texture's alpha narrows it to a pointed tip
+            alphaCutoff=GeometryRenderer.alpha_ref,  # Sward's own alpha test
+            pbrMetallicRoughness=g.PbrMetallicRoughness(
+                baseColorTexture=g.TextureInfo(index=_blade_texture(gltf)),
+                metallicFactor=0.0,
+                roughnessFactor=0.9,
+            ),
         )
     )
     primitive = g.Primitive(
@@ -208,6 +218,25 @@ def _patch_mesh(gltf: _Gltf, kind) -> int:
     )
     gltf.doc.meshes.append(g.Mesh(name=f"patch {kind.name}", primitives=[primitive]))
     return len(gltf.doc.meshes) - 1
+
+
+def _blade_texture(gltf: _Gltf) -> int:
+    """The blade texture (maps/blade.png, the one Sward's geometry draws with: row 0 the root,
+    as glTF's v = 0), written once per export."""
+    from PIL import Image
+
+    g = gltf.g
+    for i, texture in enumerate(gltf.doc.textures):
+        if gltf.doc.images[texture.source].uri == "maps/blade.png":
+            return i
+    (gltf.folder / "maps").mkdir(exist_ok=True)
+    Image.fromarray(blade_texture()).save(gltf.folder / "maps" / "blade.png", format="PNG")
+    gltf.doc.images.append(g.Image(uri="maps/blade.png"))
+    gltf.doc.samplers.append(g.Sampler(magFilter=9729, minFilter=9987, wrapS=33071, wrapT=33071))
+    gltf.doc.textures.append(
+        g.Texture(source=len(gltf.doc.images) - 1, sampler=len(gltf.doc.samplers) - 1)
+    )
+    return len(gltf.doc.textures) - 1
 
 
 def _ground(gltf: _Gltf, document, out: Path, root: int) -> int:
@@ -225,7 +254,9 @@ def _ground(gltf: _Gltf, document, out: Path, root: int) -> int:
     )
     gltf.doc.images.append(g.Image(uri="maps/ground.png"))
     gltf.doc.samplers.append(g.Sampler(magFilter=9729, minFilter=9987, wrapS=33071, wrapT=33071))
-    gltf.doc.textures.append(g.Texture(source=len(gltf.doc.images) - 1, sampler=0))
+    gltf.doc.textures.append(
+        g.Texture(source=len(gltf.doc.images) - 1, sampler=len(gltf.doc.samplers) - 1)
+    )
     gltf.doc.materials.append(
         g.Material(
             name="ground",

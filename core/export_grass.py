@@ -1,9 +1,10 @@
 """What `sward export` writes, as arrays (no file formats here: app/export.py writes them).
 
 - A grass type's patch as a mesh: the blades' vertices in the unit cell (x, z in 0 … 1, y up,
-  thesis 4.1), normals, per-vertex colour, the blade's parameter along its length as UV, and
-  each blade's density threshold (4.1.3) on its vertices, so an engine can thin the patch by
-  the density map as Sward does (a blade shows where threshold ≤ local density).
+  thesis 4.1), normals, per-vertex colour, UV over the blade texture (across, and from root
+  to tip), and on every vertex its blade's root (x, z) and density threshold (4.1.3), so an
+  engine can thin the patch by the density map as Sward does (a blade shows where its
+  threshold ≤ the local density at its root).
 - Its instances: one per cell that can show grass of the type (the density map's channel is
   not zero there, core/occupancy.py, as the renderer skips bare cells), in blocks of cells so
   an engine can cull them. Each instance is a translation and a scale: the aperiodic tiling's
@@ -37,6 +38,7 @@ def patch_mesh(patch: GrassPatch) -> dict[str, np.ndarray]:
         "color": np.ascontiguousarray(np.clip(v["color"], 0.0, 1.0), np.float32),
         "uv": np.ascontiguousarray(v["uv"], np.float32),
         "threshold": np.ascontiguousarray(v["threshold"], np.float32),
+        "root": np.ascontiguousarray(v["root"], np.float32),
         "indices": np.ascontiguousarray(patch.indices, np.uint32),
     }
 

@@ -10,12 +10,13 @@ from pathlib import Path
 import numpy as np
 import pygltflib
 import pytest
+from PIL import Image
 
 from app.export import quantized
 from app.scenes import SCENES, get_scene
 from core.design_maps import LAYERS
 from core.export_grass import grass_cells
-from core.patch import generate_patch
+from core.patch import blade_texture, generate_patch
 from tests.test_cli import sward
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -67,6 +68,14 @@ def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
         assert gltf.accessors[attributes.POSITION].count == len(patch.vertices)
         threshold = read(attributes._THRESHOLD, 1)[:, 0]
         assert np.array_equal(threshold, patch.vertices["threshold"])
+        assert np.array_equal(read(attributes._ROOT, 2), patch.vertices["root"])
+        material = gltf.materials[mesh.primitives[0].material]
+        assert (material.alphaMode, material.doubleSided) == ("MASK", True)
+        blade = gltf.images[
+            gltf.textures[material.pbrMetallicRoughness.baseColorTexture.index].source
+        ]
+        with Image.open(out / blade.uri) as image:  # the texture Sward's blades are drawn with
+            assert np.array_equal(np.asarray(image), blade_texture())
         translations = np.concatenate(
             [read(b.extensions["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"], 3)
              for b in blocks]
