@@ -56,6 +56,8 @@ def cmd_export(args: argparse.Namespace) -> int:
             )
             + (f", {meshes['bytes'] / 2**20:.1f} MB of buffer" if "bytes" in meshes else "")
         )
+    if "slices" in written:
+        print(f"{args.out / 'slices'}: {', '.join(written['slices'].values())}")
     if "maps" in written:
         print(f"{args.out / 'maps'}: {len(written['maps'])} files")
     if "settings" in written:

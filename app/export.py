@@ -3,6 +3,7 @@
     DIR/grass.gltf + grass.bin   glTF 2.0 (pygltflib): each grass type's patch as a mesh, its
                                  instances over the terrain through EXT_mesh_gpu_instancing in
                                  blocks of cells, the terrain as a mesh with the colour map on it
+    DIR/slices/                  each grass type's slices as PNG atlases (app/export_slices.py)
     DIR/maps/                    the design maps: 16-bit PNG, OpenEXR (float), r16 (one channel)
     DIR/settings.json            grass types (patch parameters, LOD levels), light, terrain
 
@@ -21,7 +22,7 @@ import numpy as np
 from core.export_grass import block_instances, blocks, grass_cells, ground_mesh, patch_mesh
 from core.patch import blade_texture, generate_patch
 
-WHAT = ("patch", "instances", "terrain", "maps", "lod")
+WHAT = ("patch", "slices", "instances", "terrain", "maps", "lod")
 GROUND_VERTICES = 513  # the terrain mesh's vertices along its longer side, at most
 FLOAT, UINT = 5126, 5125  # glTF component types
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -119,6 +120,10 @@ def export(
                     raise ExportError(str(exc)) from None
             else:
                 written["gltf"] = _gltf(document, out, what, say)
+        if "slices" in what:
+            from app.export_slices import export_slices
+
+            written["slices"] = export_slices(document, out, say)
         if "maps" in what:
             written["maps"] = _maps(document, out / "maps", say)
         if "lod" in what:
@@ -291,7 +296,7 @@ def _maps(document, folder: Path, say) -> list[str]:
     names = []
     for layer in LAYERS:
         values = document.maps.layer(layer.name)[..., : layer.channels]
-        _png16(folder / f"{layer.name}.png", values)
+        png16(folder / f"{layer.name}.png", values)
         _exr(folder / f"{layer.name}.exr", values)
         names += [f"{layer.name}.png", f"{layer.name}.exr"]
     heights = document.maps.layer("height")[..., :1]
@@ -311,7 +316,7 @@ def quantized(values: np.ndarray) -> np.ndarray:
     return np.round(np.clip(np.nan_to_num(values), 0.0, 1.0) * 65535.0).astype(np.uint16)
 
 
-def _png16(path: Path, values: np.ndarray) -> None:
+def png16(path: Path, values: np.ndarray) -> None:
     import png  # pypng: Pillow writes 16 bits only for one channel
 
     rows, columns, channels = values.shape

@@ -8,6 +8,8 @@ import subprocess
 from pathlib import Path
 
 import numpy as np
+import OpenEXR
+import png
 import pygltflib
 import pytest
 from PIL import Image
@@ -99,9 +101,6 @@ def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
     assert grows[1].sum() < grows[1].size
 
     for layer in LAYERS:
-        import OpenEXR
-        import png
-
         values = document.maps.layer(layer.name)[..., : layer.channels]
         with (out / "maps" / f"{layer.name}.png").open("rb") as f:
             w, h, rows, info = png.Reader(file=f).read()
@@ -171,3 +170,39 @@ def test_usd_without_usd_core_says_what_to_install(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "pxr", None)  # as where usd-core is not installed
     with pytest.raises(ExportError, match=r"pip install 'sward\[usd\]'"):
         export(get_scene("patch-grid").document(), tmp_path, ("patch",), format="usd")
+
+
+def test_slices_are_atlases_of_every_mip_level_with_their_layout(tmp_path):
+    from app.export_slices import slice_counts
+
+    out = tmp_path / "slices"
+    r = sward("export", "--scene", "meadow", "--out", str(out), "--what", "slices")
+    assert r.returncode == 0, r.stderr
+    document = get_scene("meadow").document()
+    sp = document.slices
+    for kind in document.grass_types:
+        for n in slice_counts(document, kind):
+            folder = out / "slices" / f"{kind.name.replace(' ', '-')}-{n}"
+            layout = json.loads((folder / "layout.json").read_text())
+            assert layout["slices"] == n and layout["patch_height"] > 0
+            for family, count in (("x", n), ("z", n), ("top", 1)):
+                levels = layout["families"][family]["levels"]
+                assert layout["families"][family]["count"] == count
+                w0, h0 = (sp.top, sp.top) if family == "top" else (sp.width, sp.height * n)
+                assert levels[0]["size"] == [w0, h0]
+                for level in levels:  # each level half the one before, down to one texel row
+                    k = level["level"]
+                    with Image.open(folder / level["color"]) as color:
+                        assert (
+                            color.size == (max(w0 >> k, 1), max(h0 >> k, 1))
+                            and color.mode == "RGBA"
+                        )
+                        alpha = np.asarray(color)[..., 3]
+                    with (folder / level["data"]).open("rb") as f:
+                        w, h, rows, info = png.Reader(file=f).read()
+                        data = np.vstack([np.asarray(row, np.uint16) for row in rows]).reshape(
+                            h, w, 4
+                        )
+                    assert info["bitdepth"] == 16 and (w, h) == color.size
+                    if k == 0:  # grass where the colour has alpha, and there a threshold
+                        assert 0.2 < (alpha > 0).mean() and (data[..., 3][alpha > 128] > 0).all()

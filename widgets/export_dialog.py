@@ -20,6 +20,7 @@ from PySide6.QtWidgets import (
 
 PARTS = {  # what `sward export --what` names: the label a person reads
     "patch": "Patch meshes (blades, colours, density thresholds)",
+    "slices": "Slices: PNG atlases, every mip level, their layout",
     "instances": "Instances over the terrain (in blocks)",
     "terrain": "Terrain mesh with the colour map",
     "maps": "Design maps (16-bit PNG, EXR, r16)",
