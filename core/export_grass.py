@@ -35,12 +35,21 @@ def patch_mesh(patch: GrassPatch) -> dict[str, np.ndarray]:
     return {
         "position": np.ascontiguousarray(v["position"], np.float32),
         "normal": np.ascontiguousarray(normals, np.float32),
-        "color": np.ascontiguousarray(np.clip(v["color"], 0.0, 1.0), np.float32),
+        # Sward shades and stores colours as the display shows them (no sRGB framebuffer);
+        # glTF's COLOR_0 and USD's displayColor are linear, which an engine encodes for the
+        # display again
+        "color": np.ascontiguousarray(srgb_to_linear(v["color"]), np.float32),
         "uv": np.ascontiguousarray(v["uv"], np.float32),
         "threshold": np.ascontiguousarray(v["threshold"], np.float32),
         "root": np.ascontiguousarray(v["root"], np.float32),
         "indices": np.ascontiguousarray(patch.indices, np.uint32),
     }
+
+
+def srgb_to_linear(values) -> np.ndarray:
+    """Display (sRGB-encoded) values 0 … 1 as linear light (IEC 61966-2-1)."""
+    v = np.clip(np.asarray(values, np.float64), 0.0, 1.0)
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
 
 
 def grass_cells(document) -> list[np.ndarray]:

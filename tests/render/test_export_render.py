@@ -45,7 +45,10 @@ def _from_export(folder, document):
         vertices["position"] = _read(gltf, data, a.POSITION, 3)
         vertices["normal"] = _read(gltf, data, a.NORMAL, 3)
         vertices["uv"] = _read(gltf, data, a.TEXCOORD_0, 2)
-        vertices["color"] = _read(gltf, data, a.COLOR_0, 3)
+        linear = _read(gltf, data, a.COLOR_0, 3).astype(np.float64)  # as Sward shows them:
+        vertices["color"] = np.where(  # encoded for the display (sRGB), as an engine does
+            linear <= 0.0031308, linear * 12.92, 1.055 * linear ** (1 / 2.4) - 0.055
+        )
         vertices["root"] = _read(gltf, data, a._ROOT, 2)
         vertices["threshold"] = _read(gltf, data, a._THRESHOLD, 1)
         per_blade = (params.subdivisions + 1) * 2
