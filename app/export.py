@@ -159,12 +159,13 @@ def _gltf(document, out: Path, what: tuple[str, ...], say) -> dict:
         for done, block in enumerate(every, 1):
             if done % max(1, len(every) // 20) == 0:
                 say(f"{kind.name}: blocks {done}/{len(every)}")
-            translation, scale = block_instances(document, grows[index], block, heights)
+            translation, rotation, scale = block_instances(document, grows[index], block, heights)
             if translation.shape[0] == 0:
                 continue
             instancing = {
                 "attributes": {
                     "TRANSLATION": gltf.accessor(translation, "VEC3"),
+                    "ROTATION": gltf.accessor(rotation, "VEC4"),
                     "SCALE": gltf.accessor(scale, "VEC3"),
                 }
             }

@@ -65,11 +65,11 @@ def export_usd(document, out: Path, what: tuple[str, ...], say: Callable[[str], 
             continue
         total = 0
         for block in blocks(spec.columns, spec.rows):
-            translation, scale = block_instances(document, grows[index], block, heights)
+            translation, rotation, scale = block_instances(document, grows[index], block, heights)
             if translation.shape[0] == 0:
                 continue
             block_file = parts / f"{name}-{block[0]}-{block[1]}.usdc"
-            _instancer(block_file, patch_file.name, translation, scale, gf, usd, geom, vt)
+            _instancer(block_file, patch_file.name, (translation, rotation, scale), usd, geom, vt)
             prim = stage.DefinePrim(holder.GetPath().AppendChild(f"Cells_{block[0]}_{block[1]}"))
             prim.GetPayloads().AddPayload(f"./usd/{block_file.name}")
             total += translation.shape[0]
@@ -135,8 +135,10 @@ def _patch(path: Path, kind, gf, sdf, usd, geom, vt) -> int:
     return int(m["position"].shape[0])
 
 
-def _instancer(path: Path, patch: str, translation, scale, gf, usd, geom, vt) -> None:
-    """One block's PointInstancer at /Instances, its prototype the patch layer."""
+def _instancer(path: Path, patch: str, moves: tuple, usd, geom, vt) -> None:
+    """One block's PointInstancer at /Instances, its prototype the patch layer; `moves`:
+    translations, rotations (x, y, z, w) and scales."""
+    translation, rotation, scale = moves
     stage = usd.Stage.CreateNew(str(path))
     geom.SetStageUpAxis(stage, geom.Tokens.y)
     instancer = geom.PointInstancer.Define(stage, "/Instances")
@@ -146,6 +148,9 @@ def _instancer(path: Path, patch: str, translation, scale, gf, usd, geom, vt) ->
     instancer.CreatePrototypesRel().SetTargets([prototype.GetPath()])
     instancer.CreatePositionsAttr(vt.Vec3fArray.FromNumpy(translation))
     instancer.CreateScalesAttr(vt.Vec3fArray.FromNumpy(scale))
+    # GfQuath holds its imaginary part first, as glTF does: (x, y, z, w)
+    xyzw = np.ascontiguousarray(rotation, np.float16)
+    instancer.CreateOrientationsAttr(vt.QuathArray.FromNumpy(xyzw))
     instancer.CreateProtoIndicesAttr(
         vt.IntArray.FromNumpy(np.zeros(translation.shape[0], np.int32))
     )

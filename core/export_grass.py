@@ -7,10 +7,11 @@
   threshold ≤ the local density at its root).
 - Its instances: one per cell that can show grass of the type (the density map's channel is
   not zero there, core/occupancy.py, as the renderer skips bare cells), in blocks of cells so
-  an engine can cull them. Each instance is a translation and a scale: the aperiodic tiling's
-  mirror bits (thesis 6.3) are a scale of −1 about the cell's centre in x and/or z, and the
-  instance stands at the ground's height at the cell's centre (the renderer displaces every
-  vertex by the height map, 6.4.4; a rigid instance follows the ground only at its centre).
+  an engine can cull them. Each instance is a translation, a rotation and a scale: the
+  aperiodic tiling's mirror bits (thesis 6.3) are a scale of −1 about the cell's centre in x
+  and/or z, and the instance stands on the ground at the cell's centre, tilted to the
+  ground's slope there, so neighbouring cells meet without steps (the renderer displaces every
+  vertex by the height map instead, 6.4.4, and keeps the blades upright).
 """
 
 from __future__ import annotations
@@ -71,14 +72,13 @@ def blocks(columns: int, rows: int, size: int = BLOCK) -> Iterator[tuple[int, in
 
 def block_instances(
     document, grows: np.ndarray, block: tuple[int, int, int, int], heights: np.ndarray | None
-) -> tuple[np.ndarray, np.ndarray]:
-    """The instances of one block: translations (n, 3) and scales (n, 3), float32, world
-    units, column by column. `heights` is document.heights(), taken once for all blocks."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The instances of one block: translations (n, 3), rotations (n, 4: unit quaternions
+    x, y, z, w) and scales (n, 3), float32, world units, column by column. `heights` is
+    document.heights(), taken once for all blocks."""
     x0, z0, x1, z1 = block
     ix, iz = np.nonzero(grows[x0:x1, z0:z1])
     ix, iz = ix + x0, iz + z0
-    if ix.size == 0:
-        return np.zeros((0, 3), np.float32), np.zeros((0, 3), np.float32)
     spec = document.terrain_spec
     # the cells' corners as the terrain places them (centred on the origin, core/terrain.py),
     # without building the terrain's quadtree and height ranges: memory for this block only
@@ -88,18 +88,47 @@ def block_instances(
     else:
         mirror = mirror_bits(origin.astype(np.float64), spec.mirror_seed).astype(np.float64)
     origin = origin.astype(np.float64)
-    if heights is None:
-        y = np.zeros(ix.size)
-    else:
-        u = (ix + 0.5) / spec.columns
-        v = (iz + 0.5) / spec.rows
-        y = bilinear(heights, u, v) * spec.height_scale
-    # x' = t + s·x maps the unit cell onto itself mirrored about its centre when s = −1
-    translation = np.column_stack(
-        [origin[:, 0] + 0.5 - 0.5 * mirror[:, 0], y, origin[:, 1] + 0.5 - 0.5 * mirror[:, 1]]
-    )
+    y, normal = _ground(heights, spec, ix, iz)
+    rotation = _tilt(normal)
+    # the cell's centre (0.5, 0, 0.5) of the patch, mirrored (s = ±1 per axis) and tilted,
+    # lands on the ground at the centre: x' = t + R·(s·x) maps the unit cell onto its cell
+    centre = np.column_stack([origin[:, 0] + 0.5, y, origin[:, 1] + 0.5])
+    local = np.column_stack([0.5 * mirror[:, 0], np.zeros(ix.size), 0.5 * mirror[:, 1]])
+    translation = centre - _rotate(rotation, local)
     scale = np.column_stack([mirror[:, 0], np.ones(ix.size), mirror[:, 1]])
-    return translation.astype(np.float32), scale.astype(np.float32)
+    return translation.astype(np.float32), rotation.astype(np.float32), scale.astype(np.float32)
+
+
+def _ground(heights, spec, ix: np.ndarray, iz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The ground's height and unit normal at the cells' centres (the height map sampled as
+    the renderer samples it, its slope over one cell)."""
+    if heights is None or ix.size == 0:
+        up = np.zeros((ix.size, 3))
+        up[:, 1] = 1.0
+        return np.zeros(ix.size), up
+
+    def h(dx: float, dz: float) -> np.ndarray:
+        u = (ix + 0.5 + dx) / spec.columns
+        v = (iz + 0.5 + dz) / spec.rows
+        return bilinear(heights, u, v) * spec.height_scale
+
+    gx = h(0.5, 0.0) - h(-0.5, 0.0)
+    gz = h(0.0, 0.5) - h(0.0, -0.5)
+    normal = np.column_stack([-gx, np.ones(ix.size), -gz])
+    return h(0.0, 0.0), normal / np.linalg.norm(normal, axis=1, keepdims=True)
+
+
+def _tilt(normal: np.ndarray) -> np.ndarray:
+    """Unit quaternions (x, y, z, w) turning +y onto each normal (the shortest turn)."""
+    q = np.column_stack([normal[:, 2], np.zeros(len(normal)), -normal[:, 0], 1.0 + normal[:, 1]])
+    return q / np.linalg.norm(q, axis=1, keepdims=True)
+
+
+def _rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Each vector of v (n, 3) turned by its quaternion of q (n, 4: x, y, z, w)."""
+    u, w = q[:, :3], q[:, 3:]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
 
 
 def ground_mesh(document, step: int = 1) -> dict[str, np.ndarray]:

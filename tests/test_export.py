@@ -25,6 +25,13 @@ ROOT = Path(__file__).resolve().parents[1]
 VALIDATOR = ROOT / ".venv" / "node" / "node_modules" / "gltf-validator"
 
 
+def turned(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Vectors v (n, 3) turned by unit quaternions q (n, 4: x, y, z, w)."""
+    u, w = q[:, :3], q[:, 3:]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
+
+
 def _validate(path: Path) -> dict:
     if shutil.which("node") is None or not VALIDATOR.is_dir():
         pytest.skip("the glTF validator: make test installs node and npm's gltf-validator")
@@ -82,25 +89,27 @@ def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
         ]
         with Image.open(out / blade.uri) as image:  # the texture Sward's blades are drawn with
             assert np.array_equal(np.asarray(image), blade_texture())
-        translations = np.concatenate(
-            [read(b.extensions["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"], 3)
-             for b in blocks]
-        )  # fmt: skip
-        scales = np.concatenate(
-            [read(b.extensions["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"], 3)
-             for b in blocks]
-        )  # fmt: skip
+        moves = [b.extensions["EXT_mesh_gpu_instancing"]["attributes"] for b in blocks]
+        translations = np.concatenate([read(m["TRANSLATION"], 3) for m in moves])
+        rotations = np.concatenate([read(m["ROTATION"], 4) for m in moves]).astype(np.float64)
+        scales = np.concatenate([read(m["SCALE"], 3) for m in moves])
         # one instance per cell with grass of this type, each on its own cell
         assert 0 < len(translations) == grows[index].sum()
         spec = document.terrain_spec
-        corner = translations[:, [0, 2]] - 0.5 + 0.5 * scales[:, [0, 2]]
-        ix, iz = np.round(corner + np.array([spec.columns / 2, spec.rows / 2])).astype(int).T
+        centre = translations + turned(rotations, scales * [0.5, 0.0, 0.5])
+        ix, iz = np.floor(centre[:, [0, 2]] + [spec.columns / 2, spec.rows / 2]).astype(int).T
         assert grows[index][ix, iz].all() and len(set(zip(ix, iz, strict=True))) == len(ix)
         assert set(np.unique(scales[:, [0, 2]])) == {-1.0, 1.0}  # the tiling's mirror bits
-        # each stands at the ground's height at its cell's centre, on the meadow's hills
-        centre = corner[:50] + 0.5
-        ground = [document.ground_at(x, z) for x, z in centre]
-        assert np.allclose(translations[:50, 1], ground, atol=1e-4) and np.std(ground) > 0
+        # each cell's centre lies on the ground, on the meadow's hills, the cell tilted to the
+        # ground's slope: its corners near the ground too (no steps between cells)
+        assert np.allclose(np.linalg.norm(rotations, axis=1), 1.0, atol=1e-5)
+        ground = [document.ground_at(x, z) for x, z in centre[:50, [0, 2]]]
+        assert np.allclose(centre[:50, 1], ground, atol=1e-4) and np.std(ground) > 0.1
+        corner = translations + turned(rotations, scales * [1.0, 0.0, 1.0])  # tilted
+        tilted = np.abs(corner[:, 1] - [document.ground_at(x, z) for x, z in corner[:, [0, 2]]])
+        upright = centre[:, [0, 2]] + 0.5 * scales[:, [0, 2]]  # the same corner, level
+        level = np.abs(centre[:, 1] - [document.ground_at(x, z) for x, z in upright])
+        assert tilted.mean() < 0.5 * level.mean()
     # the tall grass grows in clumps: not on every cell
     assert grows[1].sum() < grows[1].size
 

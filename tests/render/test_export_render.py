@@ -17,6 +17,7 @@ from core.grid import INSTANCE_DTYPE
 from core.image_diff import QUARTER, flip
 from core.params import PatchParams
 from core.patch import VERTEX_DTYPE, GrassPatch
+from tests.test_export import turned
 
 SIZE = (480, 270)
 
@@ -62,10 +63,11 @@ def _from_export(folder, document):
         )
         moves = [b.extensions["EXT_mesh_gpu_instancing"]["attributes"] for b in blocks]
         t = np.concatenate([_read(gltf, data, m["TRANSLATION"], 3) for m in moves])
+        q = np.concatenate([_read(gltf, data, m["ROTATION"], 4) for m in moves]).astype(float)
         s = np.concatenate([_read(gltf, data, m["SCALE"], 3) for m in moves])
         spec = document.terrain_spec
-        corner = t[:, [0, 2]] - 0.5 + 0.5 * s[:, [0, 2]]
-        ix, iz = np.round(corner + np.array([spec.columns / 2, spec.rows / 2])).astype(int).T
+        centre = t + turned(q, s * [0.5, 0.0, 0.5])  # the cell's centre, wherever it is tilted
+        ix, iz = np.floor(centre[:, [0, 2]] + [spec.columns / 2, spec.rows / 2]).astype(int).T
         instances = document.terrain.cells(ix, iz)  # the cells' map transforms and ground
         instances["mirror"] = s[:, [0, 2]]  # the file's mirror bits, not the terrain's
         found.append((patch, instances))
