@@ -105,7 +105,6 @@ def _camera(scene, eye: list[float], target: list[float]) -> None:
     cam.rotation_euler = look.to_track_quat("-Z", "Y").to_euler()
     cam.data.sensor_fit = "VERTICAL"
     cam.data.angle_y = math.radians(50.0)  # Sward's cameras' field of view
-    cam.data.clip_end = 500.0
 
 
 if __name__ == "__main__":
