@@ -53,7 +53,7 @@ def cmd_new(args: argparse.Namespace) -> int:
 
 def _import_heights(document, path: Path | None, scale: float | None) -> None:
     """The height map of `path` into the document's maps, and its height scale."""
-    from core.map_io import MapFileError, fit_channels, read_image, resample
+    from core.map_io import MapFileError, fit_channels, read_image_at
 
     t = document.terrain_spec
     scale = scale if scale is not None else (t.height_scale if t.height_scale > 0 else 10.0)
@@ -62,7 +62,7 @@ def _import_heights(document, path: Path | None, scale: float | None) -> None:
     values = None
     if path is not None:
         try:
-            values = resample(fit_channels(read_image(path), "height", True), document.maps.size)
+            values = fit_channels(read_image_at(path, document.maps.size)[0], "height", True)
         except MapFileError as exc:
             raise CliError(f"--height-map: {exc}") from None
     document.set_heights(values, scale)

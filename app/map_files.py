@@ -18,7 +18,7 @@ from core.map_io import (
     RAW_SUFFIXES,
     MapFileError,
     fit_channels,
-    read_image,
+    read_image_at,
     read_raw16,
     resample,
     write_map,
@@ -54,21 +54,25 @@ class MapFileActions:
                     raw = self.dialogs.raw_height_options(path.name, size)
                     if raw is None:
                         return False
-                values = read_raw16(path, **raw)
+                values, own = read_raw16(path, **raw), None
             else:
-                values = read_image(path)
+                # resampled before its channels are fitted: an 8192² grey image is not
+                # widened to float RGBA at full size first
+                values, own = read_image_at(path, self.document().maps.size)
         except MapFileError as exc:
             self.dialogs.warn(str(exc))
             return False
-        values = fit_channels(values, layer, channel is not None)
         size = self.document().maps.size
-        if (values.shape[1], values.shape[0]) != size:
+        if own is None and (values.shape[1], values.shape[0]) != size:
+            own = (values.shape[1], values.shape[0])
+            values = resample(values, size)
+        values = fit_channels(values, layer, channel is not None)
+        if own is not None and own != size:
             self.dialogs.status(
-                f"{path.name} is {values.shape[1]} × {values.shape[0]}: resampled to the "
-                f"project's maps, {size[0]} × {size[1]}",
+                f"{path.name} is {own[0]} × {own[1]}: resampled to the project's maps, "
+                f"{size[0]} × {size[1]}",
                 8000,
             )
-            values = resample(values, size)
         if channel == ALL_TYPES:  # one density for every grass type
             channel = None
             values = np.repeat(values, 4, axis=2)

@@ -30,7 +30,16 @@ class MapFileError(Exception):
 def read_image(path: Path | str) -> np.ndarray:
     """(rows, columns, channels) float32 in 0 … 1: 1 channel for greyscale (8 or 16 bit),
     3 for RGB, 4 for RGBA."""
-    path = Path(path)
+    return _read(Path(path), None)[0]
+
+
+def read_image_at(path: Path | str, size: tuple[int, int]) -> tuple[np.ndarray, tuple[int, int]]:
+    """read_image resampled (bilinearly) to size = (width, height), one channel at a time, so
+    a large image never stands in memory as float RGBA; and the image's own size."""
+    return _read(Path(path), size)
+
+
+def _read(path: Path, size: tuple[int, int] | None) -> tuple[np.ndarray, tuple[int, int]]:
     _regular(path)
     try:
         with warnings.catch_warnings():
@@ -43,7 +52,9 @@ def read_image(path: Path | str) -> np.ndarray:
                         f"({MAX_SIZE} × {MAX_SIZE})"
                     )
                 image.load()
-                return _to_array(image, path)
+                if size is None or tuple(size) == (w, h):
+                    return _to_array(image, path), (w, h)
+                return _resampled(image, path, size), (w, h)
     except MapFileError:
         raise
     except FileNotFoundError:
@@ -58,6 +69,24 @@ def read_image(path: Path | str) -> np.ndarray:
         raise MapFileError(
             f"{path.name}: the image is damaged or truncated ({type(exc).__name__}: {exc})"
         ) from None
+
+
+def _resampled(image: Image.Image, path: Path, size: tuple[int, int]) -> np.ndarray:
+    """The image's channels, each taken alone to float, checked and resized: the memory of
+    one full-size float channel at a time."""
+    if image.mode in ("P", "LA", "PA", "RGBa", "La"):
+        image = image.convert("RGBA")
+    elif image.mode == "1":
+        image = image.convert("L")
+    bands = image.getbands() if image.mode in ("RGB", "RGBA") else (None,)
+    channels = []
+    for band in bands:
+        one = image if band is None else image.getchannel(band)
+        values = _to_array(one, path)[..., 0]
+        resized = Image.fromarray(values).resize((size[0], size[1]), Image.Resampling.BILINEAR)
+        del values
+        channels.append(np.asarray(resized, np.float32))
+    return np.stack(channels, axis=-1)
 
 
 def _regular(path: Path) -> None:
@@ -113,6 +142,10 @@ def read_raw16(
     path = Path(path)
     if not (1 <= width <= MAX_SIZE and 1 <= height <= MAX_SIZE):
         raise MapFileError(f"{path.name}: width and height must be 1 … {MAX_SIZE}")
+    if not (math.isfinite(low) and math.isfinite(high)):
+        raise MapFileError(
+            f"{path.name}: the height range {low:g} … {high:g} must be two finite numbers"
+        )
     _regular(path)
     expected = width * height * 2
     size = os.stat(path).st_size  # checked before anything is read

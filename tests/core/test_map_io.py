@@ -96,3 +96,61 @@ def test_imports_are_bounded_and_only_known_formats_are_read(tmp_path):
         read_image(fifo)
     with pytest.raises(MapFileError, match="not a regular file"):
         read_raw16(fifo, 4, 4)
+
+
+@pytest.mark.parametrize(
+    "low,high",
+    [(float("nan"), 1.0), (0.0, float("nan")), (0.0, float("inf")), (-float("inf"), 1.0)],
+)
+def test_a_raw_height_range_that_is_no_finite_number_is_refused_naming_the_file(
+    tmp_path, low, high
+):
+    path = tmp_path / "dem.r16"
+    path.write_bytes(np.zeros(16, "<u2").tobytes())
+    with pytest.raises(MapFileError, match=r"dem\.r16: the height range .* two finite numbers"):
+        read_raw16(path, 4, 4, low=low, high=high)
+
+
+@pytest.mark.parametrize("mode", ["L", "I;16", "RGB", "RGBA", "P"])
+def test_an_image_read_at_the_maps_size_equals_one_read_whole_and_resampled(tmp_path, mode):
+    from core.map_io import read_image_at
+
+    rng = np.random.default_rng(3)
+    if mode == "I;16":
+        image = Image.fromarray(rng.integers(0, 65535, (40, 60), dtype=np.uint16))
+    elif mode == "P":
+        image = Image.fromarray(rng.integers(0, 255, (40, 60, 3), dtype=np.uint8)).convert("P")
+    else:
+        shape = (40, 60) if mode == "L" else (40, 60, len(mode))
+        image = Image.fromarray(rng.integers(0, 255, shape, dtype=np.uint8), mode)
+    image.save(tmp_path / "m.png")
+    whole = read_image(tmp_path / "m.png")
+    small, own = read_image_at(tmp_path / "m.png", (25, 16))
+    assert own == (60, 40) and small.shape == (16, 25, whole.shape[2])
+    assert np.allclose(small, resample(whole, (25, 16)), atol=1e-6)
+
+
+def test_an_8192_square_grey_image_imported_into_the_colour_map_stays_under_1_gb(tmp_path):
+    """The import resamples each channel before it widens grey to float RGBA (it peaked at
+    2.4 GB). Measured in a process of its own: its peak resident memory."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "big.png"
+    ramp = np.linspace(0, 255, 8192, dtype=np.float32).astype(np.uint8)
+    Image.fromarray(np.broadcast_to(ramp, (8192, 8192)).copy()).save(path, compress_level=1)
+    code = (
+        "import sys\n"
+        "from core.map_io import fit_channels, read_image_at\n"
+        "values, own = read_image_at(sys.argv[1], (256, 256))\n"
+        "colour = fit_channels(values, 'color', single=False)\n"
+        "assert own == (8192, 8192) and colour.shape == (256, 256, 4)\n"
+        # VmHWM: this process's own peak (ru_maxrss would carry the forking parent's over exec)
+        "print(next(l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')))\n"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", code, str(path)], capture_output=True, text=True, timeout=300,
+        cwd=os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert int(run.stdout) * 1024 < 2**30  # kilobytes
