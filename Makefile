@@ -3,7 +3,7 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.sward-installed
 
-.PHONY: run test lint bench setup system-deps clean
+.PHONY: run test lint bench setup system-deps test-deps clean
 
 $(STAMP): pyproject.toml
 	@bash scripts/python-env.sh $(VENV)
@@ -21,6 +21,9 @@ $(EXTRAS): $(STAMP)
 system-deps:
 	@bash scripts/system-deps.sh
 
+test-deps:  # the designer's, and Node.js for the glTF validator
+	@bash scripts/system-deps.sh test
+
 run: system-deps $(STAMP)
 	$(VENV)/bin/sward
 
@@ -36,7 +39,7 @@ VALIDATOR := $(VENV)/node/node_modules/gltf-validator/package.json
 $(VALIDATOR):
 	npm install --silent --no-audit --no-fund --prefix $(VENV)/node gltf-validator@2.0.0-dev.3.10
 
-test: system-deps lint $(EXTRAS) $(VALIDATOR)
+test: test-deps lint $(EXTRAS) $(VALIDATOR)
 	$(VENV)/bin/sward info
 	# core/ and the designer's controllers with Qt and GL unimportable (tests/blocked.py)
 	$(PY) -m pytest -n 2 -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app
