@@ -41,6 +41,17 @@ def cmd_new(args: argparse.Namespace) -> int:
         overrides(document, args)
     if args.height_map is not None or args.height_scale is not None:
         _import_heights(document, args.height_map, args.height_scale)
+    if args.species_map is not None:
+        from core.map_io import MapFileError, fit_channels, read_image_at
+        from core.species import place_species
+
+        try:
+            rgb = fit_channels(
+                read_image_at(args.species_map, document.maps.size)[0], "ambient", False
+            )
+        except MapFileError as exc:
+            raise CliError(f"--species-map: {exc}") from None
+        place_species(document, rgb)
     writable(args.file)
     try:
         save_project(args.file, document)

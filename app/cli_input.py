@@ -245,6 +245,12 @@ def parser() -> argparse.ArgumentParser:
         "the project's maps",
     )
     n.add_argument(
+        "--species-map",
+        type=Path,
+        help="a terrain colour image: each grass type grows where it is nearest its blades' "
+        "colour, none where the soil's is nearest (its density maps are written)",
+    )
+    n.add_argument(
         "--height-scale",
         type=float,
         help="world units of the height map's white (default: the scene's, or 10)",

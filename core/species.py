@@ -88,3 +88,24 @@ def patch_reference(vertex_colors: np.ndarray) -> tuple[float, float, float]:
     mean = np.clip(np.asarray(vertex_colors, np.float64).reshape(-1, 3).mean(axis=0), 0.0, 1.0)
     h, s, v = rgb_to_hsv(mean)
     return float(h), float(s), float(v)
+
+
+def design_rules(document) -> tuple[list[SpeciesRule], SpeciesRule]:
+    """The rules a document's design gives: each grass type's patch's mean blade colour, the
+    light's soil colour (default weights and exponent)."""
+    from core.patch import generate_patch
+
+    grass = [
+        SpeciesRule(patch_reference(generate_patch(kind.params).vertices["color"]))
+        for kind in document.grass_types
+    ]
+    h, s, v = rgb_to_hsv(np.asarray(document.light.soil_color, np.float64))
+    return grass, SpeciesRule((float(h), float(s), float(v)))
+
+
+def place_species(document, rgb: np.ndarray) -> None:
+    """Each grass type's density map from a colour map at the maps' size (rows, columns, 3)."""
+    grass, soil = design_rules(document)
+    density = species_densities(rgb, grass, soil)
+    for t, kind in enumerate(document.grass_types):
+        document.maps.write("density", 0, 0, density[..., t], channel=kind.channel)
