@@ -43,7 +43,7 @@ def cmd_new(args: argparse.Namespace) -> int:
         _import_heights(document, args.height_map, args.height_scale)
     if args.species_map is not None:
         from core.map_io import MapFileError, fit_channels, read_image_at
-        from core.species import place_species
+        from core.species import density_layer
 
         try:
             rgb = fit_channels(
@@ -51,7 +51,7 @@ def cmd_new(args: argparse.Namespace) -> int:
             )
         except MapFileError as exc:
             raise CliError(f"--species-map: {exc}") from None
-        place_species(document, rgb)
+        document.maps.write("density", 0, 0, density_layer(document, rgb))
     writable(args.file)
     try:
         save_project(args.file, document)

@@ -159,6 +159,7 @@ class DesignerWindow(QMainWindow):
         self.paint_panel.brush_changed.connect(self._on_brush_changed)
         self.paint_panel.import_requested.connect(lambda: self.map_files.import_map())
         self.paint_panel.export_requested.connect(lambda: self.map_files.export_map())
+        self.paint_panel.species_requested.connect(lambda: self.map_files.species_from_image())
 
     def _bind_document(self, document: Document) -> None:
         """The window's own views of the document (the others bind themselves)."""

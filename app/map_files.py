@@ -24,7 +24,8 @@ from core.map_io import (
     write_map,
 )
 
-IMPORT_FILTER = "Images (*.png *.tif *.tiff *.jpg *.jpeg *.bmp);;Raw 16-bit heights (*.r16 *.raw)"
+IMAGE_FILTER = "Images (*.png *.tif *.tiff *.jpg *.jpeg *.bmp)"
+IMPORT_FILTER = f"{IMAGE_FILTER};;Raw 16-bit heights (*.r16 *.raw)"
 # (layer, channel or None, (rows, columns, channels) values, text for the undo history)
 Import = Callable[[str, int | None, np.ndarray, str], None]
 
@@ -97,4 +98,26 @@ class MapFileActions:
             self.dialogs.warn(str(exc))
             return False
         self.dialogs.status(f"exported {label} to {path}", 5000)
+        return True
+
+    def species_from_image(self, path: Path | str | None = None) -> bool:
+        """Paint → Grass types from colours…: each grass type's density from a terrain colour
+        image (core/species.py), one undo step. Returns whether the maps changed."""
+        from core.species import density_layer
+
+        if path is None:
+            path = self.dialogs.open_path("Grass types from a colour image", IMAGE_FILTER)
+            if not path:
+                return False
+        path = Path(path)
+        document = self.document()
+        try:
+            values, _own = read_image_at(path, document.maps.size)
+        except MapFileError as exc:
+            self.dialogs.warn(str(exc))
+            return False
+        rgb = fit_channels(values, "ambient", False)  # as RGB, as a light map takes an image
+        self.on_import(
+            "density", None, density_layer(document, rgb), f"grass types from {path.name}"
+        )
         return True

@@ -103,9 +103,12 @@ def design_rules(document) -> tuple[list[SpeciesRule], SpeciesRule]:
     return grass, SpeciesRule((float(h), float(s), float(v)))
 
 
-def place_species(document, rgb: np.ndarray) -> None:
-    """Each grass type's density map from a colour map at the maps' size (rows, columns, 3)."""
+def density_layer(document, rgb: np.ndarray) -> np.ndarray:
+    """The density map (rows, columns, channels) with each grass type's channel placed from a
+    colour map at the maps' size (rows, columns, 3); channels no type uses kept."""
     grass, soil = design_rules(document)
-    density = species_densities(rgb, grass, soil)
+    placed = species_densities(rgb, grass, soil)
+    density = document.maps.layer("density").copy()
     for t, kind in enumerate(document.grass_types):
-        document.maps.write("density", 0, 0, density[..., t], channel=kind.channel)
+        density[..., kind.channel] = placed[..., t]
+    return density

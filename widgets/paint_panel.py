@@ -33,6 +33,7 @@ class PaintPanel(QWidget):
     brush_changed = Signal()
     import_requested = Signal()
     export_requested = Signal()
+    species_requested = Signal()
 
     def __init__(self, grass_names: list[str], parent=None) -> None:
         super().__init__(parent)
@@ -81,6 +82,12 @@ class PaintPanel(QWidget):
         self.export_button.clicked.connect(self.export_requested)
         buttons.addWidget(self.import_button)
         buttons.addWidget(self.export_button)
+        self.species_button = QPushButton("Grass types from colours…")
+        self.species_button.setToolTip(
+            "each grass type grows where a terrain colour image is nearest its blades' colour, "
+            "none where it is nearest the soil's (one undo step)"
+        )
+        self.species_button.clicked.connect(self.species_requested)
         self.hint = QLabel(
             "B: paint in the viewport (left drag paints, right drag orbits, middle pans) · "
             "I: pick a value · Ctrl: erase · Shift: smooth"
@@ -91,6 +98,7 @@ class PaintPanel(QWidget):
         layout = QVBoxLayout(self)
         layout.addLayout(form)
         layout.addLayout(buttons)
+        layout.addWidget(self.species_button)
         layout.addWidget(self.hint)
         layout.addWidget(self.message)
         layout.addStretch(1)
