@@ -76,6 +76,9 @@ class RenderServer:
         self.stack: MappedArray | None = None
         self.out: MappedArray | None = None
         self.request: msg.FrameRequest | None = None  # the newest frame asked for
+        # screenshots asked for, in order: a newer live frame does not replace one (the window
+        # waits for each)
+        self.shots: list[msg.FrameRequest] = []
         self.last: msg.FrameRequest | None = None
         self.continuous = False
         self.waiting_ack = False
@@ -109,6 +112,8 @@ class RenderServer:
                 self.pipeline.lod_scale = float(factor)
             case msg.SetContinuous(on):
                 self.continuous = bool(on) and self.role == FULL
+            case msg.FrameRequest(purpose="screenshot"):
+                self.shots.append(message)
             case msg.FrameRequest():
                 self.request = message
                 self._asked_at = time.monotonic()
@@ -273,9 +278,19 @@ class RenderServer:
             self.conn.send(msg.Status(""))
         return True
 
+    def next_request(self) -> msg.FrameRequest:
+        """The next frame to draw: the screenshots asked for, in order, then the newest frame
+        asked for."""
+        if self.shots:
+            return self.shots.pop(0)
+        request, self.request = self.request, None
+        assert request is not None
+        return request
+
     def loop(self) -> None:
         while True:
-            busy = (self.request is not None or self.refine) and not self.waiting_ack
+            asked = self.request is not None or bool(self.shots)
+            busy = (asked or self.refine) and not self.waiting_ack
             if not busy or self.conn.poll():
                 if not self.handle(self.conn.recv()):
                     return
@@ -284,11 +299,12 @@ class RenderServer:
                         return
                 continue
             if self.document is None:
-                self.request = None
+                self.request, self.shots = None, []
                 continue
-            if self.request is not None:
-                request, self.request = self.request, None
-                self.last = request
+            if asked:
+                request = self.next_request()
+                if request.purpose != "screenshot":
+                    self.last = request
                 self.draw(request)
                 if self.continuous and request.purpose == "live":
                     self.request = request  # frame after frame, the same state

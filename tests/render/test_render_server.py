@@ -49,6 +49,7 @@ def _server(monkeypatch) -> RenderServer:
     server = RenderServer.__new__(RenderServer)  # no GL context: the order of work alone
     server.conn, server.role, server.pipeline = _Conn(), DRAFT, _Pipeline()
     server.request, server.refine, server.waiting_ack = None, False, False
+    server.shots = []
     server._target = lambda size: None
     server._send_frame = lambda request, image, stats, extra=None: server.conn.send(request)
     monkeypatch.setattr(render_server.context, "read_rgb", lambda fbo, size, n: np.zeros(1))
@@ -81,3 +82,17 @@ def test_a_draft_drawn_again_gives_way_to_input_and_comes_back(monkeypatch):
     server.conn.waiting = False
     server.draw(again)
     assert server.pipeline.drawn == 1
+
+
+def test_a_screenshot_is_not_replaced_by_a_live_frame_asked_for_after_it(monkeypatch):
+    """Save image waits for its screenshot: a live frame asked for before the process got to
+    it (the overlay put back, the camera moved) used to take its place, and the window waited
+    ten minutes."""
+    server = _server(monkeypatch)
+    shot = _request(purpose="screenshot")
+    live, newer = _request(), _request(again=True)
+    for message in (shot, live, newer):
+        server.handle(message)
+    assert server.next_request() is shot
+    assert server.next_request() is newer  # live frames: the newest only
+    assert not server.shots and server.request is None
