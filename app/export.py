@@ -312,13 +312,10 @@ def _maps(document, folder: Path, say) -> list[str]:
     return names
 
 
-def quantized(values: np.ndarray) -> np.ndarray:
-    """0 … 1 as the 16-bit integers the PNG and r16 files hold."""
-    return np.round(np.clip(np.nan_to_num(values), 0.0, 1.0) * 65535.0).astype(np.uint16)
-
-
 def png16(path: Path, values: np.ndarray) -> None:
     import png  # pypng: Pillow writes 16 bits only for one channel
+
+    from core.map_io import quantized
 
     rows, columns, channels = values.shape
     data = quantized(values).reshape(rows, columns * channels)

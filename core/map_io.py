@@ -201,6 +201,11 @@ def fit_channels(values: np.ndarray, layer: str, single: bool) -> np.ndarray:
     return np.repeat(grey, channels, axis=2).astype(np.float32)
 
 
+def quantized(values: np.ndarray) -> np.ndarray:
+    """0 … 1 as the 16-bit integers the PNG and raw files hold (NaN as 0)."""
+    return np.round(np.clip(np.nan_to_num(values, nan=0.0), 0.0, 1.0) * 65535.0).astype(np.uint16)
+
+
 def write_map(path: Path | str, values: np.ndarray, big_endian: bool = False) -> None:
     """Save (rows, columns, channels) in 0 … 1: .r16 / .raw raw 16-bit of the first channel,
     otherwise PNG — 16-bit greyscale for one channel, 8-bit RGB or RGBA for three or four."""
@@ -208,10 +213,10 @@ def write_map(path: Path | str, values: np.ndarray, big_endian: bool = False) ->
     v = np.clip(np.nan_to_num(values, nan=0.0), 0.0, 1.0)
     try:
         if path.suffix.lower() in RAW_SUFFIXES:
-            raw = np.round(v[..., 0] * 65535.0).astype(">u2" if big_endian else "<u2")
+            raw = quantized(v[..., 0]).astype(">u2" if big_endian else "<u2")
             path.write_bytes(raw.tobytes())
         elif v.shape[2] == 1:
-            grey = np.round(v[..., 0] * 65535.0).astype(np.uint16)
+            grey = quantized(v[..., 0])
             Image.fromarray(grey).save(path, format="PNG")  # uint16: mode I;16
         else:
             rgb = v if v.shape[2] in (3, 4) else np.repeat(v[..., :1], 3, axis=2)

@@ -14,15 +14,24 @@ import pygltflib
 import pytest
 from PIL import Image
 
-from app.export import quantized
 from app.scenes import SCENES, get_scene
 from core.design_maps import LAYERS
 from core.export_grass import grass_cells
+from core.map_io import quantized
 from core.patch import blade_texture, generate_patch
 from tests.test_cli import sward
 
 ROOT = Path(__file__).resolve().parents[1]
 VALIDATOR = ROOT / ".venv" / "node" / "node_modules" / "gltf-validator"
+
+
+def accessor(gltf, data: bytes, index: int, width: int) -> np.ndarray:
+    """A glTF accessor's values from the buffer: (count, width), or (count,) for width 1."""
+    a = gltf.accessors[index]
+    view = gltf.bufferViews[a.bufferView]
+    dtype = np.uint32 if a.componentType == 5125 else np.float32
+    raw = np.frombuffer(data, dtype, a.count * width, view.byteOffset + a.byteOffset)
+    return raw.reshape(a.count, width) if width > 1 else raw
 
 
 def turned(q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -63,10 +72,7 @@ def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
     data = (out / "grass.bin").read_bytes()
 
     def read(index: int, width: int) -> np.ndarray:
-        a = gltf.accessors[index]
-        view = gltf.bufferViews[a.bufferView]
-        raw = np.frombuffer(data, np.float32, a.count * width, view.byteOffset + a.byteOffset)
-        return raw.reshape(a.count, width)
+        return accessor(gltf, data, index, width)
 
     for index, kind in enumerate(document.grass_types):
         patch = generate_patch(kind.params)
@@ -75,7 +81,7 @@ def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
         mesh = gltf.meshes[blocks[0].mesh]
         attributes = mesh.primitives[0].attributes
         assert gltf.accessors[attributes.POSITION].count == len(patch.vertices)
-        threshold = read(attributes._THRESHOLD, 1)[:, 0]
+        threshold = read(attributes._THRESHOLD, 1)
         assert np.array_equal(threshold, patch.vertices["threshold"])
         assert np.array_equal(read(attributes._ROOT, 2), patch.vertices["root"])
         # COLOR_0 is linear: Sward's display-encoded blade colours decoded (sRGB)

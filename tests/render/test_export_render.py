@@ -17,17 +17,9 @@ from core.grid import INSTANCE_DTYPE
 from core.image_diff import QUARTER, flip
 from core.params import PatchParams
 from core.patch import VERTEX_DTYPE, GrassPatch
-from tests.test_export import turned
+from tests.test_export import accessor, turned
 
 SIZE = (480, 270)
-
-
-def _read(gltf, data: bytes, index: int, width: int) -> np.ndarray:
-    a = gltf.accessors[index]
-    view = gltf.bufferViews[a.bufferView]
-    dtype = np.uint32 if a.componentType == 5125 else np.float32
-    raw = np.frombuffer(data, dtype, a.count * width, view.byteOffset + a.byteOffset)
-    return raw.reshape(a.count, width) if width > 1 else raw
 
 
 def _from_export(folder, document):
@@ -43,28 +35,28 @@ def _from_export(folder, document):
         primitive = gltf.meshes[blocks[0].mesh].primitives[0]
         a = primitive.attributes
         vertices = np.zeros(gltf.accessors[a.POSITION].count, VERTEX_DTYPE)
-        vertices["position"] = _read(gltf, data, a.POSITION, 3)
-        vertices["normal"] = _read(gltf, data, a.NORMAL, 3)
-        vertices["uv"] = _read(gltf, data, a.TEXCOORD_0, 2)
-        linear = _read(gltf, data, a.COLOR_0, 3).astype(np.float64)  # as Sward shows them:
+        vertices["position"] = accessor(gltf, data, a.POSITION, 3)
+        vertices["normal"] = accessor(gltf, data, a.NORMAL, 3)
+        vertices["uv"] = accessor(gltf, data, a.TEXCOORD_0, 2)
+        linear = accessor(gltf, data, a.COLOR_0, 3).astype(np.float64)  # as Sward shows them:
         vertices["color"] = np.where(  # encoded for the display (sRGB), as an engine does
             linear <= 0.0031308, linear * 12.92, 1.055 * linear ** (1 / 2.4) - 0.055
         )
-        vertices["root"] = _read(gltf, data, a._ROOT, 2)
-        vertices["threshold"] = _read(gltf, data, a._THRESHOLD, 1)
+        vertices["root"] = accessor(gltf, data, a._ROOT, 2)
+        vertices["threshold"] = accessor(gltf, data, a._THRESHOLD, 1)
         per_blade = (params.subdivisions + 1) * 2
         patch = GrassPatch(
             params,
             vertices,
-            _read(gltf, data, primitive.indices, 1).copy(),
+            accessor(gltf, data, primitive.indices, 1).copy(),
             vertices["root"][::per_blade].copy(),
             vertices["threshold"][::per_blade].copy(),
             float(vertices["position"][:, 1].max()),
         )
         moves = [b.extensions["EXT_mesh_gpu_instancing"]["attributes"] for b in blocks]
-        t = np.concatenate([_read(gltf, data, m["TRANSLATION"], 3) for m in moves])
-        q = np.concatenate([_read(gltf, data, m["ROTATION"], 4) for m in moves]).astype(float)
-        s = np.concatenate([_read(gltf, data, m["SCALE"], 3) for m in moves])
+        t = np.concatenate([accessor(gltf, data, m["TRANSLATION"], 3) for m in moves])
+        q = np.concatenate([accessor(gltf, data, m["ROTATION"], 4) for m in moves]).astype(float)
+        s = np.concatenate([accessor(gltf, data, m["SCALE"], 3) for m in moves])
         spec = document.terrain_spec
         centre = t + turned(q, s * [0.5, 0.0, 0.5])  # the cell's centre, wherever it is tilted
         ix, iz = np.floor(centre[:, [0, 2]] + [spec.columns / 2, spec.rows / 2]).astype(int).T
