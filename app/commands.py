@@ -262,3 +262,25 @@ class SetMap(Command):
     @property
     def memory_bytes(self) -> int:
         return self.old.nbytes + self.new.nbytes
+
+
+class PlaceSpecies(SetMap):
+    """Grass types placed from a colour map: the species rules used and the density map they
+    wrote, one step (core/species.py)."""
+
+    def __init__(self, document: Document, species, density, text: str) -> None:
+        super().__init__(document.maps, "density", None, density, text)
+        self.document, self.species, self.old_species = document, species, document.species
+
+    def apply(self) -> None:
+        self.document.species = self.species
+        super().apply()
+
+    def revert(self) -> None:
+        self.document.species = self.old_species
+        super().revert()
+
+    def clone(self) -> PlaceSpecies:
+        twin = PlaceSpecies(self.document, self.species, self.new, self.text())
+        twin.old, twin.old_species = self.old, self.old_species
+        return twin

@@ -79,7 +79,11 @@ class DesignerWindow(QMainWindow):
         self.map_view = MapView()
         self.map_view.set_maps(document.maps)
         self.map_files = MapFileActions(
-            lambda: self.document, self.paint_panel, self._push_map, self.dialogs
+            lambda: self.document,
+            self.paint_panel,
+            self._push_map,
+            self.dialogs,
+            lambda s, v, t: self.push(commands.PlaceSpecies(self.document, s, v, t)),
         )
         self._renderer_status = ""
 

@@ -43,6 +43,12 @@ class Dialogs(Protocol):
         """Width, height, byte order and range of a raw height file, or None (cancelled)."""
         ...
 
+    def species_rules(self, names: list[str], derived: list[tuple], species: Any) -> Any:
+        """Each kind's species rule (the grass types', then the soil's) as the person set them
+        from `species` (core/species.py Species; `derived` the references the design gives, in
+        HSV), or None (cancelled)."""
+        ...
+
 
 class History(Protocol):
     def isClean(self) -> bool: ...

@@ -23,6 +23,7 @@ from core.map_io import (
     resample,
     write_map,
 )
+from core.species import Species
 
 IMAGE_FILTER = "Images (*.png *.tif *.tiff *.jpg *.jpeg *.bmp)"
 IMPORT_FILTER = f"{IMAGE_FILTER};;Raw 16-bit heights (*.r16 *.raw)"
@@ -32,11 +33,17 @@ Import = Callable[[str, int | None, np.ndarray, str], None]
 
 class MapFileActions:
     def __init__(
-        self, document: Callable[[], Document], panel, on_import: Import, dialogs: Dialogs
+        self,
+        document: Callable[[], Document],
+        panel,
+        on_import: Import,
+        dialogs: Dialogs,
+        on_species: Callable[[Species, np.ndarray, str], None],
     ) -> None:
         self.document = document
         self.panel = panel  # target (layer, channel), target_label
         self.on_import = on_import
+        self.on_species = on_species  # species rules and the density they place, one step
         self.dialogs = dialogs
 
     def import_map(self, path: Path | str | None = None, raw: dict | None = None) -> bool:
@@ -100,24 +107,32 @@ class MapFileActions:
         self.dialogs.status(f"exported {label} to {path}", 5000)
         return True
 
-    def species_from_image(self, path: Path | str | None = None) -> bool:
-        """Paint → Grass types from colours…: each grass type's density from a terrain colour
-        image (core/species.py), one undo step. Returns whether the maps changed."""
-        from core.species import density_layer
+    def species_from_image(self, path: Path | str | None = None, species=None) -> bool:
+        """Paint → Grass types from colours…: the person sets each kind's rule (reference
+        colour, weights, exponent; skipped when `species` is given), then picks a terrain
+        colour image; each grass type's density follows from it (core/species.py). The rules
+        and the density are one undo step. Returns whether the maps changed."""
+        from core.species import density_layer, derived_references
 
+        document = self.document()
+        if species is None:
+            grass, soil = derived_references(document)
+            species = self.dialogs.species_rules(
+                [*document.grass_names, "bare soil"], [*grass, soil], document.species
+            )
+            if species is None:
+                return False
         if path is None:
             path = self.dialogs.open_path("Grass types from a colour image", IMAGE_FILTER)
             if not path:
                 return False
         path = Path(path)
-        document = self.document()
         try:
             values, _own = read_image_at(path, document.maps.size)
         except MapFileError as exc:
             self.dialogs.warn(str(exc))
             return False
         rgb = fit_channels(values, "ambient", False)  # as RGB, as a light map takes an image
-        self.on_import(
-            "density", None, density_layer(document, rgb), f"grass types from {path.name}"
-        )
+        density = density_layer(document, rgb, species)
+        self.on_species(species, density, f"grass types from {path.name}")
         return True

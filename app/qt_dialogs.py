@@ -17,7 +17,9 @@ from PySide6.QtWidgets import (
 )
 
 from app.dialogs import CANCEL, DISCARD, SAVE
+from core.species import Species
 from widgets.raw_dialog import RawHeightDialog
+from widgets.species_dialog import SpeciesDialog
 
 Button = QMessageBox.StandardButton
 DialogButton = QDialogButtonBox.StandardButton
@@ -102,3 +104,9 @@ class QtDialogs:
         if dialog.exec() != QDialog.DialogCode.Accepted:
             return None
         return dialog.values()
+
+    def species_rules(self, names: list[str], derived: list[tuple], species: Species):
+        dialog = SpeciesDialog(names, derived, species, self.window)
+        if dialog.exec() != QDialog.DialogCode.Accepted:
+            return None
+        return dialog.species()

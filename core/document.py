@@ -24,6 +24,7 @@ from core.lod import LodConfig
 from core.params import PatchParams, SliceParams
 from core.paths import sample_path
 from core.props import boxes
+from core.species import Species
 from core.terrain import Terrain
 from core.wind import Wind
 
@@ -125,6 +126,16 @@ def _check_props(_doc: Document, value: tuple) -> tuple[Prop, ...]:
     return value
 
 
+def _check_species(doc: Document, value: Species) -> Species:
+    value = check_type(Species)(doc, value)
+    if len(value.kinds) > len(doc.grass_types):
+        raise ValueError(
+            f"species rules for {len(value.kinds)} grass types; the project has "
+            f"{len(doc.grass_types)}"
+        )
+    return value
+
+
 def _check_terrain_spec(doc: Document, value: TerrainSpec) -> TerrainSpec:
     check_type(TerrainSpec)(doc, value)
     old = getattr(doc, "_terrain_spec", None)
@@ -147,6 +158,7 @@ class Document:
     paths = Field(_check_paths, "Camera paths: name -> key cameras.")
     props = Field(_check_props, "Boxes and rocks standing in the grass.")
     terrain_spec = Field(_check_terrain_spec, "The grid of cells and how its ground is shaped.")
+    species = Field(_check_species, "How a colour map places the grass types (core/species.py).")
 
     def __init__(
         self,
@@ -164,6 +176,7 @@ class Document:
         paths: dict[str, tuple[CameraSpec, ...]] | None = None,
         props: tuple[Prop, ...] = (),
         wind: Wind | None = None,
+        species: Species | None = None,
     ) -> None:
         if not 1 <= len(grass_types) <= 4:
             raise ValueError(f"a project has 1 … 4 grass types, not {len(grass_types)}")
@@ -184,6 +197,7 @@ class Document:
         self.default_camera = default_camera
         self.paths = paths or {}
         self.props = props
+        self.species = species or Species()
 
     # -- one change, made again --------------------------------------------------------------
     def apply(self, name: str, args: tuple) -> None:

@@ -28,6 +28,7 @@ from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, Ter
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.params import ParameterError, PatchParams, SliceParams
+from core.species import Species
 from core.wind import Wind
 
 FORMAT = "sward-project"
@@ -153,6 +154,7 @@ def document_data(doc: Document) -> dict:
         "light": _light(doc.light),
         "slices": dataclasses.asdict(doc.slices),
         "wind": doc.wind.to_dict(),
+        "species": doc.species.to_dict(),
     }
 
 
@@ -184,6 +186,7 @@ def document_from_data(data: dict, stack: np.ndarray, copy: bool = True) -> Docu
         },
         props=tuple(_prop_from(row) for row in data.get("props", [])),
         wind=Wind.from_dict(data.get("wind", {})),
+        species=Species.from_dict(data.get("species", {})),
     )
 
 

@@ -137,6 +137,28 @@ class Slices(msgspec.Struct, forbid_unknown_fields=True):
     top: Annotated[int, Meta(ge=16, le=2048)] = 128
 
 
+class SpeciesKind(msgspec.Struct, forbid_unknown_fields=True):
+    """core/species.py SpeciesTuning: a reference colour in HSV (none: the design's), a weight
+    per component, the exponent."""
+
+    weights: tuple[
+        Annotated[float, Meta(ge=0.0, le=100.0)],
+        Annotated[float, Meta(ge=0.0, le=100.0)],
+        Annotated[float, Meta(ge=0.0, le=100.0)],
+    ] = (1.0, 1.0, 1.0)
+    exponent: Annotated[float, Meta(ge=0.1, le=32.0)] = 4.0
+    reference: Colour | None = None
+
+    def __post_init__(self) -> None:
+        if not any(self.weights):
+            raise ValueError("a species rule's weights cannot all be 0")
+
+
+class Species(msgspec.Struct, forbid_unknown_fields=True):
+    kinds: Annotated[list[SpeciesKind], Meta(max_length=4)] = []
+    soil: SpeciesKind = msgspec.field(default_factory=SpeciesKind)
+
+
 # a prop: [[x, z], [w, h, d], [r, g, b]], an optional lift and an optional shape
 PropRow = Annotated[
     list[Annotated[list[Finite], Meta(max_length=3)] | Finite | Literal["box", "rock"]],
@@ -165,10 +187,16 @@ class Project(msgspec.Struct, forbid_unknown_fields=True):
     light: Light = msgspec.field(default_factory=Light)
     slices: Slices = msgspec.field(default_factory=Slices)
     wind: Wind = msgspec.field(default_factory=Wind)
+    species: Species = msgspec.field(default_factory=Species)
 
     def __post_init__(self) -> None:
         if self.default_camera not in self.cameras:
             raise ValueError(f"default_camera {self.default_camera!r} is not one of the cameras")
+        if len(self.species.kinds) > 1 + len(self.grass):
+            raise ValueError(
+                f"species.kinds has {len(self.species.kinds)} rules for {1 + len(self.grass)} "
+                "grass types"
+            )
         for i, row in enumerate(self.props):
             shapes = [len(v) if isinstance(v, list) else 0 for v in row]
             tail = [isinstance(v, str) for v in row[3:]]  # lift, shape

@@ -10,8 +10,9 @@ and none where the soil wins the draw. A density map holds the expected share in
 best kinds share the texel in proportion to their scores, the others get nothing, and the
 soil's share stays bare. Borders between two kinds mix; a kind next to the soil thins out.
 
-The references follow from what the person made: a grass type's is the mean colour of its
-patch's blades, the soil's is the light's soil colour (core/lighting.py)."""
+The references follow from what the person made unless the person sets one: a grass type's is
+the mean colour of its patch's blades, the soil's is the light's soil colour (core/lighting.py).
+The weights, exponents and set references are the document's `species` and saved with it."""
 
 from __future__ import annotations
 
@@ -90,23 +91,84 @@ def patch_reference(vertex_colors: np.ndarray) -> tuple[float, float, float]:
     return float(h), float(s), float(v)
 
 
-def design_rules(document) -> tuple[list[SpeciesRule], SpeciesRule]:
-    """The rules a document's design gives: each grass type's patch's mean blade colour, the
-    light's soil colour (default weights and exponent)."""
+@dataclass(frozen=True)
+class SpeciesTuning:
+    """What a person sets for one kind: the weights and exponent of its rule and, optionally,
+    its own reference colour (HSV); without one the design gives it (`design_rules`)."""
+
+    weights: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    exponent: float = 4.0
+    reference: tuple[float, float, float] | None = None
+
+    def __post_init__(self) -> None:
+        SpeciesRule(self.reference or (0.0, 0.0, 0.0), self.weights, self.exponent)  # checks
+
+    def rule(self, derived: tuple[float, float, float]) -> SpeciesRule:
+        return SpeciesRule(self.reference or derived, self.weights, self.exponent)
+
+    def to_dict(self) -> dict:
+        out: dict = {"weights": list(self.weights), "exponent": self.exponent}
+        if self.reference is not None:
+            out["reference"] = list(self.reference)
+        return out
+
+    @classmethod
+    def from_dict(cls, data: dict) -> SpeciesTuning:
+        reference = data.get("reference")
+        return cls(
+            tuple(float(w) for w in data.get("weights", (1.0, 1.0, 1.0))),  # type: ignore[arg-type]
+            float(data.get("exponent", 4.0)),
+            None if reference is None else tuple(float(c) for c in reference),  # type: ignore[arg-type]
+        )
+
+
+@dataclass(frozen=True)
+class Species:
+    """A document's species rules: one tuning per grass type, in the types' order (a type past
+    the end takes the defaults), and the soil's."""
+
+    kinds: tuple[SpeciesTuning, ...] = ()
+    soil: SpeciesTuning = SpeciesTuning()
+
+    def kind(self, index: int) -> SpeciesTuning:
+        return self.kinds[index] if index < len(self.kinds) else SpeciesTuning()
+
+    def to_dict(self) -> dict:
+        return {"kinds": [k.to_dict() for k in self.kinds], "soil": self.soil.to_dict()}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Species:
+        return cls(
+            tuple(SpeciesTuning.from_dict(k) for k in data.get("kinds", [])),
+            SpeciesTuning.from_dict(data.get("soil", {})),
+        )
+
+
+def derived_references(document) -> tuple[list[tuple[float, float, float]], tuple]:
+    """The references the design gives: each grass type's patch's mean blade colour, the
+    light's soil colour."""
     from core.patch import generate_patch
 
     grass = [
-        SpeciesRule(patch_reference(generate_patch(kind.params).vertices["color"]))
+        patch_reference(generate_patch(kind.params).vertices["color"])
         for kind in document.grass_types
     ]
     h, s, v = rgb_to_hsv(np.asarray(document.light.soil_color, np.float64))
-    return grass, SpeciesRule((float(h), float(s), float(v)))
+    return grass, (float(h), float(s), float(v))
 
 
-def density_layer(document, rgb: np.ndarray) -> np.ndarray:
+def design_rules(document, species: Species | None = None) -> tuple[list[SpeciesRule], SpeciesRule]:
+    """The rules of a document: its species tunings (core/document.py `species`, or those
+    given) over the references its design gives."""
+    grass, soil = derived_references(document)
+    species = species or document.species
+    return [species.kind(t).rule(ref) for t, ref in enumerate(grass)], species.soil.rule(soil)
+
+
+def density_layer(document, rgb: np.ndarray, species: Species | None = None) -> np.ndarray:
     """The density map (rows, columns, channels) with each grass type's channel placed from a
     colour map at the maps' size (rows, columns, 3); channels no type uses kept."""
-    grass, soil = design_rules(document)
+    grass, soil = design_rules(document, species)
     placed = species_densities(rgb, grass, soil)
     density = document.maps.layer("density").copy()
     for t, kind in enumerate(document.grass_types):

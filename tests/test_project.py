@@ -11,6 +11,7 @@ from core import project_file
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.project_file import ProjectError, load_project, save_project
+from core.species import Species, SpeciesTuning
 from tests.project_files import project_parts, variant
 
 SIZE = (160, 100)
@@ -34,6 +35,9 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     )
     doc.light = Lighting(sun_elevation=20.0, sun_azimuth=300.0, ambient_color=(0.2, 0.3, 0.4))
     doc.slices = doc.slices.replace(slices=4, top=256)
+    doc.species = Species(
+        (SpeciesTuning((2.0, 0.5, 0.0), 8.0, (0.3, 0.6, 0.5)),), SpeciesTuning(exponent=2.0)
+    )
     save_project(path, doc)
     loaded = load_project(path)
     assert loaded.same_as(doc)

@@ -270,7 +270,7 @@ def test_an_imported_map_is_resampled_and_handed_on_as_one_edit(tmp_path):
     imports = []
     dialogs = MagicMock(spec=Dialogs)
     files = MapFileActions(
-        lambda: document, panel("ambient", None), lambda *a: imports.append(a), dialogs
+        lambda: document, panel("ambient", None), lambda *a: imports.append(a), dialogs, None
     )
     assert files.import_map(path)
     layer, channel, values, text = imports[0]
@@ -285,7 +285,7 @@ def test_an_unreadable_map_file_warns_and_changes_nothing(tmp_path):
     bad.write_bytes(b"\x89PNG not really")
     imports = []
     dialogs = MagicMock(spec=Dialogs)
-    files = MapFileActions(doc, panel(), lambda *a: imports.append(a), dialogs)
+    files = MapFileActions(doc, panel(), lambda *a: imports.append(a), dialogs, None)
     assert not files.import_map(bad)
     assert imports == [] and "broken.png" in dialogs.warn.call_args[0][0]
 
@@ -296,10 +296,51 @@ def test_a_raw_import_asks_for_its_layout_and_a_cancel_changes_nothing(tmp_path)
     dialogs = MagicMock(spec=Dialogs)
     dialogs.raw_height_options.return_value = None
     imports = []
-    files = MapFileActions(doc, panel("height", None), lambda *a: imports.append(a), dialogs)
+    files = MapFileActions(doc, panel("height", None), lambda *a: imports.append(a), dialogs, None)
     assert not files.import_map(raw)
     dialogs.raw_height_options.assert_called_once_with("h.r16", 512)
     assert imports == []
+
+
+def test_species_rules_the_person_sets_place_the_grass_and_travel_with_it(tmp_path):
+    """Paint → Grass types from colours…: the dialog's rules (here the first type's reference
+    set to a blue nobody's blades have) decide where each type grows; a cancel changes
+    nothing."""
+    import colorsys
+
+    from PIL import Image
+
+    from core.species import Species, SpeciesTuning
+
+    document = doc()
+    w, h = document.maps.size
+    image = np.zeros((h, w, 3), np.uint8)
+    image[:, : w // 2] = (40, 60, 200)  # blue
+    image[:, w // 2 :] = np.round(np.asarray(document.light.soil_color) * 255)
+    path = tmp_path / "colours.png"
+    Image.fromarray(image).save(path)
+    placed = []
+    dialogs = MagicMock(spec=Dialogs)
+    dialogs.open_path.return_value = str(path)
+    files = MapFileActions(lambda: document, panel(), None, dialogs, lambda *a: placed.append(a))
+
+    dialogs.species_rules.return_value = None
+    assert not files.species_from_image()
+    assert placed == [] and not dialogs.open_path.called
+    names, derived, given = dialogs.species_rules.call_args[0]
+    assert names == [*document.grass_names, "bare soil"] and len(derived) == len(names)
+    assert given == document.species
+
+    blue = tuple(colorsys.rgb_to_hsv(40 / 255, 60 / 255, 200 / 255))
+    species = Species((SpeciesTuning(reference=blue),))
+    dialogs.species_rules.return_value = species
+    assert files.species_from_image()
+    rules, density, text = placed[0]
+    channels = [kind.channel for kind in document.grass_types]
+    assert rules == species and text == "grass types from colours.png"
+    # blue is the first type's own now (the blades' green would give it 0.84 here)
+    assert density[:, 4 : w // 2 - 4, channels[0]].min() > 0.99
+    assert density[:, w // 2 + 4 : -4][..., channels].max() < 0.05
 
 
 def test_a_save_removes_the_autosave_so_recovery_never_offers_older_work(tmp_path):

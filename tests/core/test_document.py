@@ -12,6 +12,7 @@ from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.params import PRESETS, SLICE_COUNTS, PatchParams, SliceParams
 from core.project_file import MAP_RANGES, load_project, save_project
+from core.species import Species, SpeciesTuning
 
 finite = st.floats(-500.0, 500.0, allow_nan=False, width=32)
 unit = st.floats(0.0, 1.0, allow_nan=False)
@@ -269,6 +270,7 @@ def _every_field_kind(doc: Document) -> list:
         ("props", lambda: setattr(doc, "props", (*doc.props, rock))),
         ("name", lambda: setattr(doc, "name", "renamed")),
         ("description", lambda: setattr(doc, "description", "a field")),
+        ("species", lambda: setattr(doc, "species", Species(soil=SpeciesTuning(exponent=9.0)))),
         ("terrain", lambda: doc.set_heights(doc.maps.layer("height") + 0.25, 4.0)),
     ]
 

@@ -96,6 +96,10 @@ def test_every_field_with_wrong_types_and_extreme_values(good, tmp_path):
         (("params", "blade_count"), 1e400, "malformed"),  # Infinity is not JSON
         (("name",), ["a", "list"], "name"),
         (("light", "sun_azimuth"), 1e9, "light.sun_azimuth"),
+        (("species", "soil", "exponent"), 0, "species.soil.exponent"),
+        (("species", "soil", "weights"), [0, 0, 0], "weights cannot all be 0"),
+        (("species", "soil", "reference"), [0.5, 2, 0], "species.soil.reference"),
+        (("species", "kinds"), [{}, {}, {}], "species.kinds has 3 rules for 2 grass types"),
     ],
 )
 def test_wrong_values_are_refused_naming_the_field(good, tmp_path, where, value, words):
