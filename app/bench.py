@@ -23,6 +23,7 @@ SUITES = (
     "large_terrain",
     "volume_cost",
     "wind",
+    "segments",
 )
 MODULES = {"techniques": "representations"}
 

@@ -204,6 +204,9 @@ def _patch_mesh(gltf: _Gltf, kind) -> int:
     # each vertex's blade: its density threshold and root, application-specific attributes
     attributes._THRESHOLD = gltf.accessor(m["threshold"], "SCALAR", ARRAY_BUFFER)
     attributes._ROOT = gltf.accessor(m["root"], "VEC2", ARRAY_BUFFER)
+    # its curve from the root (quadratic Bézier control points): for bending and segment LOD
+    attributes._CURVE1 = gltf.accessor(m["ctrl1"], "VEC3", ARRAY_BUFFER)
+    attributes._CURVE2 = gltf.accessor(m["ctrl2"], "VEC3", ARRAY_BUFFER)
     gltf.doc.materials.append(
         g.Material(
             name=f"grass {kind.name}",

@@ -43,6 +43,8 @@ def patch_mesh(patch: GrassPatch) -> dict[str, np.ndarray]:
         "uv": np.ascontiguousarray(v["uv"], np.float32),
         "threshold": np.ascontiguousarray(v["threshold"], np.float32),
         "root": np.ascontiguousarray(v["root"], np.float32),
+        "ctrl1": np.ascontiguousarray(v["ctrl1"], np.float32),
+        "ctrl2": np.ascontiguousarray(v["ctrl2"], np.float32),
         "indices": np.ascontiguousarray(patch.indices, np.uint32),
     }
 

@@ -138,9 +138,14 @@ class LodConfig:
     # zoomed in) draws every zone farther out in proportion (`for_view`), so a representation
     # is used where its detail is as many pixels wide as the level was tuned for.
     view_height: float | None = None
+    # blades far away drawn with fewer segments while their curve strays from its chords by at
+    # most this many pixels (core/segments.py); 0: every blade with all its segments
+    segment_tolerance: float = 0.5
 
     def __post_init__(self) -> None:
         levels = self.levels
+        if not 0.0 <= self.segment_tolerance <= 8.0:
+            raise ValueError("the blade segments' tolerance must be 0 … 8 pixels")
         if self.view_height is not None and not 16 <= self.view_height <= 16384:
             raise ValueError("LOD view height must be 16 … 16384 pixels (or none)")
         if not levels:

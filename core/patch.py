@@ -13,6 +13,7 @@ import numpy as np
 
 from core.density import clustered_thresholds, uniform_thresholds
 from core.params import PatchParams
+from core.segments import chord_colors, level_widths
 
 # Vertex layout shared with render/geometry.py and shaders/geometry.glsl.
 VERTEX_DTYPE = np.dtype(
@@ -28,6 +29,11 @@ VERTEX_DTYPE = np.dtype(
         # the wind bends the curve (core/wind.py, shaders/_wind.glsl)
         ("ctrl1", np.float32, 3),
         ("ctrl2", np.float32, 3),
+        # the colour on the chord this vertex slides onto where fewer segments draw its blade
+        # (core/segments.py): the colour it takes on as it leaves
+        ("chord_color", np.float32, 3),
+        # its blade's width at segment levels 1 … 4 over the full strip's (core/segments.py)
+        ("level_width", np.float32, 4),
     ]
 )
 
@@ -109,7 +115,10 @@ def generate_patch(params: PatchParams) -> GrassPatch:
     verts["normal"] = normal[:, :, None, :]
     verts["uv"][..., 0] = np.array([0.0, 1.0])[None, None, :]
     verts["uv"][..., 1] = t[None, :, None]
-    verts["color"] = _vertex_colors(params, blade_mod, vertex_mod, t)[:, :, None, :]
+    colors = _vertex_colors(params, blade_mod, vertex_mod, t)
+    verts["color"] = colors[:, :, None, :]
+    verts["chord_color"] = chord_colors(colors)[:, :, None, :]
+    verts["level_width"] = level_widths(centre)[:, None, None, :]
     verts["root"] = roots[:, None, None, :]
     verts["threshold"] = thresholds[:, None, None]
     verts["ctrl1"] = ctrl1[:, None, None, :]
@@ -148,25 +157,6 @@ def _strip_indices(blades: int, subdivisions: int) -> np.ndarray:
     k = np.arange(subdivisions) * 2
     quad = np.stack([k, k + 1, k + 2, k + 2, k + 1, k + 3], axis=1).reshape(-1)
     base = (np.arange(blades) * per_blade)[:, None]
-    return (base + quad[None, :]).astype(np.uint32).reshape(-1)
-
-
-def draft_rows(subdivisions: int) -> np.ndarray:
-    """The rows of a blade's strip a draft keeps: every other one from the root, and the tip
-    (a draft is drawn at a quarter of the width and height, where a blade's segments are a
-    quarter as long on screen: per-blade segment LOD, Horlebein)."""
-    rows = list(range(0, subdivisions + 1, 2))
-    if rows[-1] != subdivisions:
-        rows.append(subdivisions)
-    return np.array(rows)
-
-
-def draft_indices(blades: int, subdivisions: int) -> np.ndarray:
-    """_strip_indices over draft_rows alone: the same vertices, about half the triangles."""
-    rows = draft_rows(subdivisions) * 2
-    lo, hi = rows[:-1], rows[1:]
-    quad = np.stack([lo, lo + 1, hi, hi, lo + 1, hi + 1], axis=1).reshape(-1)
-    base = (np.arange(blades) * (subdivisions + 1) * 2)[:, None]
     return (base + quad[None, :]).astype(np.uint32).reshape(-1)
 
 

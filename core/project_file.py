@@ -65,6 +65,7 @@ def _lod(config: LodConfig) -> dict:
         "epsilon": config.epsilon,
         "silhouettes": config.silhouettes,
         "view_height": config.view_height,
+        "segment_tolerance": config.segment_tolerance,
     }
 
 
@@ -74,6 +75,7 @@ def _lod_from(data: dict) -> LodConfig:
         data.get("epsilon", 0.05),
         data.get("silhouettes", False),
         data.get("view_height"),
+        data.get("segment_tolerance", 0.5),
     )
 
 

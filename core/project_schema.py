@@ -72,6 +72,7 @@ class Lod(msgspec.Struct, forbid_unknown_fields=True):
     silhouettes: bool = False
     # the view height (pixels) the distances hold for; none: world units (core/lod.py)
     view_height: Annotated[float, Meta(ge=16.0, le=16384.0)] | None = None
+    segment_tolerance: Annotated[float, Meta(ge=0.0, le=8.0)] = 0.5
 
 
 class Grass(msgspec.Struct, forbid_unknown_fields=True):

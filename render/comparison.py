@@ -20,15 +20,19 @@ from render.grass_type import technique_colors
 
 @contextlib.contextmanager
 def drawn_as(pipeline: FramePipeline, mode: str | None = None, view: str = "shaded") -> Iterator:
-    """The pipeline draws in `mode` (None: as it is) and `view` meanwhile, then as before."""
-    old_mode, old_view = pipeline.mode, pipeline.view
+    """The pipeline draws in `mode` (None: as it is) and `view` meanwhile, then as before.
+    All-geometry is the reference every representation is measured against: its blades are
+    drawn with all their segments (core/segments.py)."""
+    old_mode, old_view, old_segments = pipeline.mode, pipeline.view, pipeline.segment_lod
     try:
         pipeline.view = view
         if mode is not None:
             pipeline.set_mode(mode)
+            pipeline.segment_lod = old_segments and mode != ViewMode.GEOMETRY
         yield pipeline
     finally:
         pipeline.view = old_view
+        pipeline.segment_lod = old_segments
         if mode is not None:
             pipeline.set_mode(old_mode)
 

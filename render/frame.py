@@ -86,6 +86,7 @@ class FramePipeline:
         self._targets: dict[tuple[int, int, int], moderngl.Framebuffer] = {}
         self.present = Presenter(ctx)
         self._abort: Callable[[], bool] | None = None
+        self.segment_lod = True  # blades far away drawn with fewer segments (core/segments.py)
 
     # -- scene state (render/binding.py keeps it in step with the document) -------------------
     def set_grass_types(self, types: list[tuple[LodConfig, int]]) -> None:

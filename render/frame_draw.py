@@ -80,6 +80,9 @@ def _upload(p: FramePipeline, frame: FrameUniforms, cells: list, stats: FrameSta
     pixel = 2.0 * math.tan(math.radians(frame.fov_y) / 2.0) / max(frame.viewport_height, 1)
     for index, (grass, selected) in enumerate(zip(p.grass_types, cells, strict=True)):
         grass.image.view = (frame.eye, pixel, p.terrain)  # its slices' grids
+        tolerance = grass.lod.segment_tolerance if p.segment_lod else 0.0
+        segments = (frame.eye, pixel, frame.wind.enabled, frame.draft, tolerance)
+        grass.geometry.view = segments if tolerance > 0 else None
         start = time.perf_counter()
         batches = grass.upload(selected, frame.eye, p.terrain, occupancy)
         stats.t_u_ms += (time.perf_counter() - start) * 1000.0
@@ -88,9 +91,9 @@ def _upload(p: FramePipeline, frame: FrameUniforms, cells: list, stats: FrameSta
             stats.levels.append((index, representation, slices, count))
             stats.add_instances(representation, count)
             if representation == "geometry":
-                blades, triangles = blades_drawn(grass, count)
+                blades, _whole = blades_drawn(grass, count)
                 stats.blades += blades
-                stats.triangles += triangles
+                stats.triangles += grass.geometry.triangles(blades // max(count, 1))
     return drawn
 
 
@@ -144,7 +147,8 @@ def stack_layers(grass_types: list) -> None:
 
 
 def blades_drawn(grass, count: int) -> tuple[int, int]:
-    """The blades and triangles `count` geometry instances of a grass type draw."""
+    """The blades `count` geometry instances of a grass type draw, and the triangles they draw
+    with all their segments (an all-geometry reference's)."""
     patch = grass.patch
     if patch is None or not count:
         return 0, 0

@@ -7,6 +7,9 @@
 #if !defined CAPTURE && !defined WIND_INCLUDED
 #include "_wind.glsl"
 #endif
+#ifndef CAPTURE
+#include "_segments.glsl"
+#endif
 uniform mat4 u_view_proj;
 uniform float u_density;       // global density scale
 uniform float u_cell_size;     // world units per patch
@@ -28,6 +31,11 @@ in float in_cell_density;      // per instance
 in vec2 in_lod;                // per instance: transition (w, side)
 in vec2 in_mirror;             // per instance: symmetry vector (s_x, s_z)
 in vec4 in_config;             // per instance: config transform into the design maps
+#ifndef CAPTURE
+in float in_segment;           // per instance: its blades' continuous segment level
+in vec3 in_chord_color;        // the colour this vertex takes on where it leaves
+in vec4 in_level_width;        // its blade's width at levels 1 … 4, the full strip's 1
+#endif
 
 // Taken at the centroid of the samples a fragment covers: far away a blade's triangles are
 // thinner than a pixel, and at the pixel's centre, outside the triangle, its attributes were
@@ -41,16 +49,29 @@ centroid out vec4 v_map_color; // colour modulation (eq. 6.8) at the vertex
 centroid out vec3 v_ambient;   // ambient and diffuse light maps at the vertex (eq. 6.9)
 centroid out vec3 v_diffuse;
 flat out float v_threshold;
-flat out uint v_salt;          // the triangle's own: its last vertex and its cell
+flat out uint v_salt;          // its blade's (its triangle's in a capture) and its cell's
 flat out float v_opacity;
 flat out float v_density;      // local density at the root, for AO_blade
 centroid out float v_height;  // height above the ground, for AO_blade
 #ifndef CAPTURE
 flat out vec2 v_lean;          // the wind's lean at the root (the wind view)
+// the blade's curve at rest and bent, and its width direction: the fragment shader rebuilds
+// the full strip's normals from them at every segment level (shaders/geometry.glsl)
+flat out vec3 v_rest1;
+flat out vec3 v_rest2;
+flat out vec3 v_bent1;
+flat out vec3 v_bent2;
+flat out vec3 v_side;
 #endif
 
 void main() {
-    v_salt = uint(gl_VertexID) * 747796405u
+#ifdef CAPTURE
+    uint salt = uint(gl_VertexID);
+#else
+    // the blade's own (its vertices' rows), so a blade keeps its samples at every segment level
+    uint salt = uint(gl_VertexID) / uint(2.0 * u_subdivisions + 2.0);
+#endif
+    v_salt = salt * 747796405u
              + (floatBitsToUint(in_origin.x) ^ (floatBitsToUint(in_origin.y) * 2891336453u));
     vec3 s = vec3(in_mirror.x, 1.0, in_mirror.y);
     vec3 local = (in_position - vec3(0.5, 0.0, 0.5)) * s + vec3(0.5, 0.0, 0.5);  // eq. 6.7
@@ -84,23 +105,34 @@ void main() {
     v_map_color = design_color(duv); v_ambient = design_ambient(duv); v_diffuse = design_diffuse(duv);
 #endif
     vec3 normal = in_normal * s;
+    vec3 color = in_color;
 #ifndef CAPTURE
-    // the wind bends the blade's curve about its root (core/wind.py); the vertex keeps its
-    // place across the blade (its offset from the curve), its normal turns with the curve
+    // the blade's curve from its root (core/patch.py); the vertex keeps its place across the
+    // blade (its offset from the curve) wherever the curve goes
+    vec3 root3 = vec3(root.x, 0.0, root.y);
+    vec3 c1 = in_ctrl1 * s, c2 = in_ctrl2 * s;
+    float t = in_uv.y;
+    vec3 across = local - root3 - curve_point(c1, c2, t);
+    v_rest1 = c1;
+    v_rest2 = c2;
+    vec3 side = cross(curve_tangent(c1, c2, t), normal);  // the strip's width direction
+    v_side = dot(side, side) > 1e-12 ? normalize(side) : vec3(1.0, 0.0, 0.0);
+    // the wind bends the curve about the root (core/wind.py)
     vec2 lean = wind_lean((in_origin + root) * u_cell_size);
     v_lean = lean;
-    if (lean != vec2(0.0)) {
-        vec3 c1 = in_ctrl1 * s, c2 = in_ctrl2 * s;
-        vec3 root3 = vec3(root.x, 0.0, root.y);
-        float t = in_uv.y;
-        vec3 across = local - root3 - curve_point(c1, c2, t);
-        vec3 before = curve_tangent(c1, c2, t);
-        wind_bend(c1, c2, lean);
-        local = root3 + curve_point(c1, c2, t) + across;
-        vec3 after = curve_tangent(c1, c2, t);
-        if (dot(before, before) > 1e-12 && dot(after, after) > 1e-12)
-            normal = turn(normal, normalize(before), normalize(after));
+    if (lean != vec2(0.0)) wind_bend(c1, c2, lean);
+    v_bent1 = c1;
+    v_bent2 = c2;
+    // fewer segments far away (core/segments.py): a vertex the next level leaves out slides
+    // onto its chord, its colour with it, and the blade widens as its strip shortens
+    float m = segment_morph(in_segment);
+    vec3 centre = curve_point(c1, c2, t);
+    float t_lo, t_hi, share;
+    if (m > 0.0 && segment_leaves(t, u_segment_level, t_lo, t_hi, share)) {
+        centre = mix(centre, mix(curve_point(c1, c2, t_lo), curve_point(c1, c2, t_hi), share), m);
+        color = mix(in_color, in_chord_color, m);
     }
+    local = root3 + centre + across * segment_width(in_level_width, m);
 #endif
     vec3 world = (vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size;
 #ifndef CAPTURE
@@ -110,7 +142,7 @@ void main() {
     v_world = world;
     v_normal = normal;
     v_uv = in_uv;
-    v_color = in_color;
+    v_color = color;
     v_threshold = in_threshold;
     gl_Position = u_view_proj * vec4(world, 1.0);
 }

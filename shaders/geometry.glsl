@@ -31,6 +31,34 @@ flat in float v_opacity;
 flat in float v_density;
 centroid in float v_height;
 flat in vec2 v_lean;
+flat in vec3 v_rest1;
+flat in vec3 v_rest2;
+flat in vec3 v_bent1;
+flat in vec3 v_bent2;
+flat in vec3 v_side;
+uniform float u_subdivisions;
+
+// The blade's normal at curve parameter t of the patch's full strip: the patch's own (side ×
+// the curve's direction, core/patch.py) at the full strip's rows around t, turned with the
+// curve where the wind bends it, and interpolated between them as the full strip's triangles
+// interpolate its vertices' normals; so a blade drawn with fewer segments is lit as it is with
+// all of them
+vec3 row_normal(float t) {
+    vec3 rest = curve_tangent(v_rest1, v_rest2, t);
+    vec3 n = cross(v_side, rest);
+    if (WIND_ON) {
+        vec3 bent = curve_tangent(v_bent1, v_bent2, t);
+        if (dot(rest, rest) > 1e-12 && dot(bent, bent) > 1e-12)
+            n = turn(n, normalize(rest), normalize(bent));
+    }
+    return dot(n, n) > 1e-18 ? normalize(n) : vec3(0.0, 1.0, 0.0);
+}
+
+vec3 blade_normal(float t) {
+    float s = max(u_subdivisions, 1.0);
+    float row = min(floor(t * s), s - 1.0);
+    return mix(row_normal(row / s), row_normal((row + 1.0) / s), t * s - row);
+}
 
 out vec4 f_color;
 
@@ -38,7 +66,7 @@ void main() {
     vec4 tex = texture(u_blade, v_uv);
     tex.a *= v_opacity;  // blades crossing between LOD representations fade (eq. 5.26)
     if (tex.a < u_alpha_ref) discard;
-    vec3 n = normalize(v_normal);
+    vec3 n = normalize(blade_normal(v_uv.y));
     if (dot(n, u_eye - v_world) < 0.0) n = -n;  // two-sided material
     vec3 albedo = mix(v_color * tex.rgb, v_map_color.rgb, v_map_color.a);  // eq. 6.8
     vec3 lit = shade(albedo, n, ao_blade(v_height, v_density), v_ambient, v_diffuse);

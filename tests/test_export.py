@@ -84,6 +84,8 @@ def test_the_meadow_reads_back_as_it_was_designed(tmp_path):
         threshold = read(attributes._THRESHOLD, 1)
         assert np.array_equal(threshold, patch.vertices["threshold"])
         assert np.array_equal(read(attributes._ROOT, 2), patch.vertices["root"])
+        assert np.array_equal(read(attributes._CURVE1, 3), patch.vertices["ctrl1"])
+        assert np.array_equal(read(attributes._CURVE2, 3), patch.vertices["ctrl2"])
         # COLOR_0 is linear: Sward's display-encoded blade colours decoded (sRGB)
         linear = read(attributes.COLOR_0, 3).astype(np.float64)
         display = np.where(linear <= 0.0031308, linear * 12.92, 1.055 * linear ** (1 / 2.4) - 0.055)

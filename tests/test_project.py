@@ -30,7 +30,9 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     doc.set_lod(
         0,
         LodConfig(
-            (LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8)), view_height=540
+            (LodLevel("geometry", 0, 5), LodLevel("image", 4, None, macro=8)),
+            view_height=540,
+            segment_tolerance=2.0,
         ),
     )
     doc.light = Lighting(sun_elevation=20.0, sun_azimuth=300.0, ambient_color=(0.2, 0.3, 0.4))

@@ -5,6 +5,8 @@ the last frame. Edits are reported as whole LodConfigs; impossible ones show the
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from PySide6.QtCore import QTimer, Signal
 from PySide6.QtWidgets import (
     QAbstractItemView,
@@ -82,6 +84,20 @@ class LodPanel(QWidget):
         view_row = QHBoxLayout()
         view_row.addWidget(QLabel("Distances for a view"))
         view_row.addWidget(self.view_box, 1)
+        self.segments_box = QDoubleSpinBox(minimum=0.0, maximum=8.0, singleStep=0.25, decimals=2)
+        self.segments_box.setSpecialValueText("all segments")
+        self.segments_box.setSuffix(" px")
+        self.segments_box.setKeyboardTracking(False)
+        self.segments_box.setToolTip(
+            "Blades far away are drawn with fewer segments while their curve strays from the "
+            "straight pieces by at most this much on screen. 0: every blade with all its segments."
+        )
+        self.segments_box.valueChanged.connect(
+            lambda px: self._edit(lambda c: replace(c, segment_tolerance=px))
+        )
+        segments_row = QHBoxLayout()
+        segments_row.addWidget(QLabel("Fewer blade segments within"))
+        segments_row.addWidget(self.segments_box, 1)
         self.zones_box = QCheckBox("Show zones on the terrain (Z)")
         self.zones_box.toggled.connect(self.zones_toggled)
         self.tune_button = QPushButton("Tune…")
@@ -96,6 +112,7 @@ class LodPanel(QWidget):
         layout.addWidget(self.table, 1)
         layout.addLayout(buttons)
         layout.addLayout(view_row)
+        layout.addLayout(segments_row)
         layout.addWidget(self.zones_box)
         layout.addWidget(self.tune_button)
         layout.addWidget(self.message)
@@ -161,9 +178,13 @@ class LodPanel(QWidget):
             macro.setEnabled(level.representation != "geometry")
             for w in (rep, slices, begin, end, macro):
                 w.blockSignals(False)
-        self.view_box.blockSignals(True)
-        self.view_box.setValue(round(self.config.view_height or 0))
-        self.view_box.blockSignals(False)
+        for box, value in (
+            (self.view_box, round(self.config.view_height or 0)),
+            (self.segments_box, self.config.segment_tolerance),
+        ):
+            box.blockSignals(True)
+            box.setValue(value)
+            box.blockSignals(False)
         self.table.resizeColumnsToContents()
         self.table.selectRow(min(row, len(levels) - 1))
 

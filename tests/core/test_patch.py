@@ -4,7 +4,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from core.params import PRESETS, PatchParams
-from core.patch import blade_texture, draft_indices, draft_rows, generate_patch
+from core.patch import blade_texture, generate_patch
+from core.segments import level_count, level_indices, level_rows
 
 SMALL = PatchParams(blade_count=300)
 
@@ -86,20 +87,25 @@ def test_blade_texture_has_a_pointed_tip():
 
 
 @pytest.mark.parametrize("subdivisions", [1, 2, 3, 4, 5, 8])
-def test_a_drafts_blades_keep_every_other_row_root_and_tip(subdivisions):
-    """Drafts draw each blade through every other row of its strip (render/geometry.py): the
-    same vertices, the root and the tip kept, the strip still closed, about half the
-    triangles."""
+def test_each_segment_level_keeps_whole_rows_root_and_tip_and_the_next_levels(subdivisions):
+    """Blades far away are drawn through fewer rows of their strip (core/segments.py): the same
+    vertices, the root and the tip kept, the strip still closed, each level about half the
+    segments of the one before and holding the rows of the one after, the last one segment."""
     params = PatchParams(blade_count=7, subdivisions=subdivisions)
     patch = generate_patch(params)
-    coarse = draft_indices(7, subdivisions).reshape(7, -1)
     per_blade = (subdivisions + 1) * 2
-    rows = draft_rows(subdivisions)
-    assert rows[0] == 0 and rows[-1] == subdivisions
-    assert coarse.shape[1] == 6 * (len(rows) - 1)
-    assert len(rows) - 1 == (subdivisions + 1) // 2  # segments: about half
-    for blade, indices in enumerate(coarse):
-        local = indices.astype(np.int64) - blade * per_blade
-        assert set(local // 2) == set(rows)  # whole rows, both sides, of this blade only
-    if subdivisions == 1:
-        assert np.array_equal(coarse.reshape(-1), patch.indices)
+    count = level_count(subdivisions)
+    assert np.array_equal(level_indices(7, subdivisions, 0), patch.indices)
+    assert list(level_rows(subdivisions, count - 1)) == [0, subdivisions]
+    for level in range(count):
+        rows = level_rows(subdivisions, level)
+        assert rows[0] == 0 and rows[-1] == subdivisions
+        strips = level_indices(7, subdivisions, level).reshape(7, -1)
+        assert strips.shape[1] == 6 * (len(rows) - 1)
+        for blade, indices in enumerate(strips):
+            local = indices.astype(np.int64) - blade * per_blade
+            assert set(local // 2) == set(rows)  # whole rows, both sides, of this blade only
+        if level + 1 < count:
+            finer = set(rows.tolist())
+            assert set(level_rows(subdivisions, level + 1).tolist()) <= finer
+            assert len(level_rows(subdivisions, level + 1)) - 1 == (len(rows) - 1 + 1) // 2

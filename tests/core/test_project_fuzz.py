@@ -96,6 +96,7 @@ def test_every_field_with_wrong_types_and_extreme_values(good, tmp_path):
         (("params", "blade_count"), 1e400, "malformed"),  # Infinity is not JSON
         (("name",), ["a", "list"], "name"),
         (("light", "sun_azimuth"), 1e9, "light.sun_azimuth"),
+        (("lod", "segment_tolerance"), 9, "lod.segment_tolerance"),
         (("species", "soil", "exponent"), 0, "species.soil.exponent"),
         (("species", "soil", "weights"), [0, 0, 0], "weights cannot all be 0"),
         (("species", "soil", "reference"), [0.5, 2, 0], "species.soil.reference"),

@@ -54,8 +54,8 @@ def test_the_draft_process_refreshes_the_sums_a_draft_lacked(headless):
 
 
 def test_a_draft_draws_blades_of_fewer_segments_that_look_the_same(headless):
-    """A draft (a quarter of the width and height) draws each blade through every other row
-    of its strip (core/patch.py draft_rows): fewer triangles, the same picture at that size."""
+    """A draft draws each blade one segment level coarser than a full frame at its size
+    (core/segments.py): fewer triangles, the same picture at that size."""
     from render import context
 
     doc = get_scene("meadow").document()
@@ -65,13 +65,11 @@ def test_a_draft_draws_blades_of_fewer_segments_that_look_the_same(headless):
     size = (200, 150)
     out = renderer._target(size)
     pipeline.render(camera, out, size, draft=False)  # slices and sums made
-    drawn = {}
+    drawn, triangles = {}, {}
     for draft in (False, True):
-        pipeline.render(camera, out, size, draft=draft)
+        triangles[draft] = pipeline.render(camera, out, size, draft=draft).triangles
         drawn[draft] = context.read_rgb(out, size, 3).astype(np.int32)
-    geometry = pipeline.grass_types[0].geometry
-    full, coarse = geometry._counts
-    assert coarse < 0.7 * full
+    assert triangles[True] < 0.7 * triangles[False]
     difference = np.abs(drawn[True] - drawn[False])
     assert difference.max() > 0  # the draft drew its own triangles
     assert difference.mean() < 1.5  # on 0 … 255: the same picture at a draft's size

@@ -1,7 +1,7 @@
 """The meadow drawn from its exported glTF by Sward's own geometry renderer matches
 `sward render --only geometry` of the same camera within the blade-detail floor of `sward
 quality`: the patch comes from the file's mesh (positions, normals, UV, colours, roots,
-thresholds) and its parameters from settings.json, the instances (which cells, their mirror
+thresholds, curves) and its parameters from settings.json, the instances (which cells, their mirror
 bits) from EXT_mesh_gpu_instancing. A mesh attribute or a placement lost on the way shows here
 as a picture that differs."""
 
@@ -17,6 +17,7 @@ from core.grid import INSTANCE_DTYPE
 from core.image_diff import QUARTER, flip
 from core.params import PatchParams
 from core.patch import VERTEX_DTYPE, GrassPatch
+from core.segments import chord_colors
 from tests.test_export import accessor, turned
 
 SIZE = (480, 270)
@@ -44,7 +45,12 @@ def _from_export(folder, document):
         )
         vertices["root"] = accessor(gltf, data, a._ROOT, 2)
         vertices["threshold"] = accessor(gltf, data, a._THRESHOLD, 1)
+        vertices["ctrl1"] = accessor(gltf, data, a._CURVE1, 3)
+        vertices["ctrl2"] = accessor(gltf, data, a._CURVE2, 3)
         per_blade = (params.subdivisions + 1) * 2
+        rows = vertices["color"].reshape(-1, params.subdivisions + 1, 2, 3)[:, :, 0]
+        # the colours fewer segments slide onto follow from the file's (core/segments.py)
+        vertices["chord_color"] = np.repeat(chord_colors(rows), 2, axis=1).reshape(-1, 3)
         patch = GrassPatch(
             params,
             vertices,
@@ -71,6 +77,7 @@ def test_the_meadow_drawn_from_its_export_matches_all_geometry(headless, tmp_pat
     export(document, tmp_path, ("patch", "instances", "lod"))
     camera = document.camera()
     renderer = headless(document, mode="geometry")
+    renderer.pipeline.segment_lod = False  # the file holds whole strips: an engine's LOD is its own
     direct, _ = renderer.render(camera, SIZE, measure=False)
     floor_image, _ = renderer.render(
         shifted(camera, document.params(0).width_max), SIZE, measure=False

@@ -32,6 +32,7 @@ CAMERA = Camera.from_eye_target((0.0, 5.0, 30.0), (0.0, 3.0, 0.0), fov_y=24.0)
 def soil_shares(headless, mode: str) -> np.ndarray:
     """Per 8 × 8 block of the ramp, how far it turned magenta with the soil drawn so."""
     renderer = headless(SCENE.document(), mode=mode)
+    renderer.pipeline.segment_lod = False  # the blades whole: what the volume is made from
     frames = []
     for soil in (renderer.pipeline.ground.under_grass, (1.0, 0.0, 1.0)):
         renderer.pipeline.ground.under_grass = soil

@@ -40,8 +40,9 @@ def test_wind_moves_the_grass_of_every_representation_and_not_sky_or_path(headle
     # (bright blue: the grey rocks are bluish too, and blades lean over their edges)
     sky = ~grass & (before[..., 2] > before[..., 1]) & (before[..., 2] > 150)
     assert sky.sum() > 10_000 and not change[sky].any()
-    # the bare path and the rocks, away from the blades that lean over their edges
-    bare = binary_erosion(~grass & ~sky, iterations=3)
+    # the bare path and the rocks, away from the blades that lean over their edges (their faint
+    # tips, a pixel past what the technique view shows, sway too)
+    bare = binary_erosion(~grass & ~sky, iterations=4)
     assert bare.sum() > 1000 and (change[bare] <= 8).all()
 
 
