@@ -23,7 +23,7 @@ from app.history_keys import HistoryKeys
 from app.image_output import save_recording
 from app.map_files import MapFileActions
 from app.menus import build_menus, fill_camera_menu
-from app.painting import PaintController
+from app.paint_rules import PaintController, PaintRules
 from app.project_actions import ProjectActions
 from app.qt_dialogs import QtDialogs
 from app.scenes import DEFAULT_SCENE, get_scene
@@ -85,6 +85,7 @@ class DesignerWindow(QMainWindow):
             self.dialogs,
             lambda s, v, t: self.push(commands.PlaceSpecies(self.document, s, v, t)),
         )
+        self.rules = PaintRules(document, self.paint_panel, self.map_view, self.painter, self.push)
         self._renderer_status = ""
 
         self.panel = PatchPanel(document)
@@ -207,6 +208,7 @@ class DesignerWindow(QMainWindow):
             self.viewport.set_camera(document.camera())
             self.painter.set_document(document)
             self.map_view.set_maps(document.maps)
+            self.rules.set_document(document)
             self.panel.set_document(document)
             self.lod_panel.set_document(document)
             self.paint_panel.set_grass_names(document.grass_names)

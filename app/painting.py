@@ -14,6 +14,7 @@ import numpy as np
 
 from core.brush import Brush, Stroke
 from core.document import Document
+from core.paint_rule import rule_mask
 
 
 class BrushPanel(Protocol):
@@ -48,12 +49,14 @@ class PaintController:
         self.stroke: Stroke | None = None
         self.eyedropper = False
         self.document = document
+        self._mask: tuple[tuple, np.ndarray] | None = None  # ((rule, terrain), its mask)
         document.maps.changed.connect(self._on_map_changed)
 
     def set_document(self, document: Document) -> None:
         self.document.maps.changed.disconnect(self._on_map_changed)
         self.document = document
         self.stroke = None
+        self._mask = None
         document.maps.changed.connect(self._on_map_changed)
 
     # -- strokes -----------------------------------------------------------------------------
@@ -66,12 +69,45 @@ class PaintController:
         mode = "erase" if erase else "smooth" if smooth else None
         layer, channel = self.panel.target
         try:
-            self.stroke = Stroke(self.document.maps, layer, self.panel.brush(mode), channel)
+            brush = self.panel.brush(mode)
+            self.stroke = Stroke(self.document.maps, layer, brush, channel, self.rule_mask())
         except ValueError as exc:
             self.panel.show_message(str(exc))
             return
         self.panel.show_message("")
         self.stroke.add(x, y)
+
+    def fill_by_rule(self) -> bool:
+        """Paint → Fill by rule: the chosen map takes the brush's value wherever the rule holds
+        (its soft edge part of the way), one undo step. Returns whether it painted."""
+        if not self.document.paint_rule.active:
+            self.panel.show_message("set a slope or height rule first")
+            return False
+        layer, channel = self.panel.target
+        try:
+            brush = self.panel.brush("fill")
+            stroke = Stroke(self.document.maps, layer, brush, channel, self.rule_mask())
+        except ValueError as exc:
+            self.panel.show_message(str(exc))
+            return False
+        stroke.finish()
+        self.on_stroke(stroke, f"fill {self.panel.target_label} by rule")
+        if layer == "height":
+            self.on_heights()
+        return True
+
+    def rule_mask(self) -> np.ndarray | None:
+        """The document's paint rule over the maps (core/paint_rule.py), None where it has
+        none; kept until the rule or the height map changes."""
+        rule = self.document.paint_rule
+        if not rule.active:
+            return None
+        t = self.document.terrain_spec
+        if self._mask is None or self._mask[0] != (rule, t):
+            heights = self.document.maps.layer("height")[..., 0]
+            mask = rule_mask(rule, heights, t.height_scale, (t.columns, t.rows))
+            self._mask = ((rule, t), mask)
+        return self._mask[1]
 
     def move(self, x: float, y: float) -> None:
         if self.stroke is not None:
@@ -108,5 +144,7 @@ class PaintController:
         self.panel.set_value(tuple(float(v) for v in values))
 
     def _on_map_changed(self, name: str, _rect) -> None:
+        if name == "height":
+            self._mask = None  # the slopes and heights the rule weighs changed
         if name == "height" and self.stroke is None:  # undo, redo, import; strokes: release
             self.on_heights()

@@ -77,6 +77,9 @@ class Stroke:
     layer: str
     brush: Brush
     channel: int | None = None  # density: which grass type
+    # (rows, columns) weights 0 … 1 over the map: where a rule lets the brush take
+    # (core/paint_rule.py); None: everywhere
+    mask: np.ndarray | None = None
     saved: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
     after: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
     dabs: int = 0
@@ -96,10 +99,15 @@ class Stroke:
                 f"a brush for the {self.layer} map needs {channels} value(s), "
                 f"got {len(self.brush.value)}"
             )
+        if self.mask is not None and self.mask.shape != (self.maps.size[1], self.maps.size[0]):
+            raise ValueError("a brush mask must have the maps' size")
         if self.brush.mode == "fill":
             w, h = self.maps.size
             self._save(0, 0, w, h)
             target = np.broadcast_to(np.asarray(self.brush.value, np.float32), (h, w, channels))
+            if self.mask is not None:  # fill by rule: only where it holds
+                current = self._read(0, 0, w, h)
+                target = current + (target - current) * self.mask[..., None]
             self._write(0, 0, np.array(target))
 
     # -- stamping ----------------------------------------------------------------------------
@@ -134,6 +142,8 @@ class Stroke:
         if cx1 <= cx0 or cy1 <= cy0:
             return
         weights = weights[cy0 - y0 : cy1 - y0, cx0 - x0 : cx1 - x0, None]
+        if self.mask is not None:
+            weights = weights * self.mask[cy0:cy1, cx0:cx1, None]
         self._save(cx0, cy0, cx1, cy1)
         current = self._read(cx0, cy0, cx1, cy1)
         target = self._target(current, cx0, cy0, cx1, cy1)

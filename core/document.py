@@ -21,6 +21,7 @@ from core.evented import Field, check_type
 from core.heights import bilinear
 from core.lighting import Lighting
 from core.lod import LodConfig
+from core.paint_rule import PaintRule
 from core.params import PatchParams, SliceParams
 from core.paths import sample_path
 from core.props import boxes
@@ -159,6 +160,7 @@ class Document:
     props = Field(_check_props, "Boxes and rocks standing in the grass.")
     terrain_spec = Field(_check_terrain_spec, "The grid of cells and how its ground is shaped.")
     species = Field(_check_species, "How a colour map places the grass types (core/species.py).")
+    paint_rule = Field(check_type(PaintRule), "Where the brush takes: slope, height.")
 
     def __init__(
         self,
@@ -177,6 +179,7 @@ class Document:
         props: tuple[Prop, ...] = (),
         wind: Wind | None = None,
         species: Species | None = None,
+        paint_rule: PaintRule | None = None,
     ) -> None:
         if not 1 <= len(grass_types) <= 4:
             raise ValueError(f"a project has 1 … 4 grass types, not {len(grass_types)}")
@@ -198,6 +201,7 @@ class Document:
         self.paths = paths or {}
         self.props = props
         self.species = species or Species()
+        self.paint_rule = paint_rule or PaintRule()
 
     # -- one change, made again --------------------------------------------------------------
     def apply(self, name: str, args: tuple) -> None:

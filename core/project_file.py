@@ -27,6 +27,7 @@ from core.design_maps import LAYERS, DesignMaps
 from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, TerrainSpec
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
+from core.paint_rule import PaintRule
 from core.params import ParameterError, PatchParams, SliceParams
 from core.species import Species
 from core.wind import Wind
@@ -35,16 +36,8 @@ FORMAT = "sward-project"
 VERSION = 1
 SUFFIX = ".sward"
 # the light a project keeps (the fog distance is its own entry; sky and soil are fixed)
-LIGHT = (
-    "sun_elevation",
-    "sun_azimuth",
-    "sun_color",
-    "ambient_color",
-    "translucency",
-    "blade_ao_impact",
-    "blade_ao_height",
-)
-
+LIGHT = "sun_elevation sun_azimuth sun_color ambient_color".split()
+LIGHT += ["translucency", "blade_ao_impact", "blade_ao_height"]
 
 MAX_FILE_BYTES = 4 << 30
 MAX_JSON_BYTES = 16 << 20
@@ -157,6 +150,7 @@ def document_data(doc: Document) -> dict:
         "slices": dataclasses.asdict(doc.slices),
         "wind": doc.wind.to_dict(),
         "species": doc.species.to_dict(),
+        "paint_rule": doc.paint_rule.to_dict(),
     }
 
 
@@ -189,6 +183,7 @@ def document_from_data(data: dict, stack: np.ndarray, copy: bool = True) -> Docu
         props=tuple(_prop_from(row) for row in data.get("props", [])),
         wind=Wind.from_dict(data.get("wind", {})),
         species=Species.from_dict(data.get("species", {})),
+        paint_rule=PaintRule.from_dict(data.get("paint_rule", {})),
     )
 
 

@@ -160,6 +160,26 @@ class Species(msgspec.Struct, forbid_unknown_fields=True):
     soil: SpeciesKind = msgspec.field(default_factory=SpeciesKind)
 
 
+Span = tuple[Finite, Finite]
+
+
+class PaintRule(msgspec.Struct, forbid_unknown_fields=True):
+    """core/paint_rule.py PaintRule: where the brush takes."""
+
+    slope: (
+        tuple[Annotated[float, Meta(ge=0.0, le=90.0)], Annotated[float, Meta(ge=0.0, le=90.0)]]
+        | None
+    ) = None
+    height: Span | None = None
+    soft_slope: Annotated[float, Meta(ge=0.0, le=45.0)] = 2.0
+    soft_height: Annotated[float, Meta(ge=0.0, le=1.0e4)] = 0.1
+
+    def __post_init__(self) -> None:
+        for name, span in (("slope", self.slope), ("height", self.height)):
+            if span is not None and span[0] > span[1]:
+                raise ValueError(f"paint_rule.{name}: the least first")
+
+
 # a prop: [[x, z], [w, h, d], [r, g, b]], an optional lift and an optional shape
 PropRow = Annotated[
     list[Annotated[list[Finite], Meta(max_length=3)] | Finite | Literal["box", "rock"]],
@@ -189,6 +209,7 @@ class Project(msgspec.Struct, forbid_unknown_fields=True):
     slices: Slices = msgspec.field(default_factory=Slices)
     wind: Wind = msgspec.field(default_factory=Wind)
     species: Species = msgspec.field(default_factory=Species)
+    paint_rule: PaintRule = msgspec.field(default_factory=PaintRule)
 
     def __post_init__(self) -> None:
         if self.default_camera not in self.cameras:

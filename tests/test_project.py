@@ -10,6 +10,7 @@ from app.scenes import get_scene
 from core import project_file
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
+from core.paint_rule import PaintRule
 from core.project_file import ProjectError, load_project, save_project
 from core.species import Species, SpeciesTuning
 from tests.project_files import project_parts, variant
@@ -40,6 +41,7 @@ def test_a_project_round_trips_what_was_set(tmp_path, meadow):
     doc.species = Species(
         (SpeciesTuning((2.0, 0.5, 0.0), 8.0, (0.3, 0.6, 0.5)),), SpeciesTuning(exponent=2.0)
     )
+    doc.paint_rule = PaintRule(slope=(0.0, 20.0), height=(1.5, 9.0), soft_height=0.5)
     save_project(path, doc)
     loaded = load_project(path)
     assert loaded.same_as(doc)

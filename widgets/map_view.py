@@ -63,6 +63,10 @@ class MapView(QWidget):
         self.box = self.plot.addViewBox(lockAspect=True, invertY=True)
         self.image = _PaintableImage(self)
         self.box.addItem(self.image)
+        # where the paint rule does not hold, shaded over the map (core/paint_rule.py)
+        self.mask = pg.ImageItem()
+        self.mask.setZValue(1)
+        self.box.addItem(self.mask)
         self.brush = QGraphicsEllipseItem()
         self.brush.setPen(pg.mkPen((255, 255, 255), width=0))
         self.box.addItem(self.brush)
@@ -110,6 +114,19 @@ class MapView(QWidget):
             weight = values[..., 3:4]
             values = values[..., :3] * weight + 0.5 * (1.0 - weight)
         self.image.setImage(values, levels=LEVELS.get(self.layer, (0.0, 1.0)), autoLevels=False)
+
+    def show_mask(self, mask: np.ndarray | None) -> None:
+        """Shade where the paint rule's weights (rows, columns, 0 … 1) fall short; None: no
+        rule, nothing shaded. Laid out as the map's values are."""
+        if mask is None:
+            self.mask.clear()
+            self.mask.setVisible(False)
+            return
+        shade = np.zeros((*mask.shape, 4), np.uint8)
+        shade[..., 2] = 90  # a dark blue veil: the map shows through it
+        shade[..., 3] = np.round((1.0 - np.clip(mask, 0.0, 1.0)) * 170).astype(np.uint8)
+        self.mask.setImage(shade, levels=(0, 255), autoLevels=False)
+        self.mask.setVisible(True)
 
     def displayed(self) -> np.ndarray:
         """What the image shows (for tests)."""

@@ -20,6 +20,7 @@ from PySide6.QtWidgets import (
 )
 
 from core.brush import ALL_TYPES, FALLOFFS, MODES, Brush
+from widgets.rule_box import RuleBox
 
 SCALAR_LAYERS = {  # map -> (value label, maximum)
     "density": ("Density", 1.0),
@@ -99,6 +100,8 @@ class PaintPanel(QWidget):
         layout.addLayout(form)
         layout.addLayout(buttons)
         layout.addWidget(self.species_button)
+        self.rule_box = RuleBox()
+        layout.addWidget(self.rule_box)
         layout.addWidget(self.hint)
         layout.addWidget(self.message)
         layout.addStretch(1)

@@ -10,6 +10,7 @@ from core.design_maps import LAYERS, DesignMaps
 from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, TerrainSpec
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
+from core.paint_rule import PaintRule
 from core.params import PRESETS, SLICE_COUNTS, PatchParams, SliceParams
 from core.project_file import MAP_RANGES, load_project, save_project
 from core.species import Species, SpeciesTuning
@@ -271,6 +272,7 @@ def _every_field_kind(doc: Document) -> list:
         ("name", lambda: setattr(doc, "name", "renamed")),
         ("description", lambda: setattr(doc, "description", "a field")),
         ("species", lambda: setattr(doc, "species", Species(soil=SpeciesTuning(exponent=9.0)))),
+        ("paint_rule", lambda: setattr(doc, "paint_rule", PaintRule(slope=(0.0, 20.0)))),
         ("terrain", lambda: doc.set_heights(doc.maps.layer("height") + 0.25, 4.0)),
     ]
 

@@ -97,6 +97,8 @@ def test_every_field_with_wrong_types_and_extreme_values(good, tmp_path):
         (("name",), ["a", "list"], "name"),
         (("light", "sun_azimuth"), 1e9, "light.sun_azimuth"),
         (("lod", "segment_tolerance"), 9, "lod.segment_tolerance"),
+        (("paint_rule", "slope"), [30, 10], "paint_rule.slope: the least first"),
+        (("paint_rule", "slope"), [0, 95], "paint_rule.slope"),
         (("species", "soil", "exponent"), 0, "species.soil.exponent"),
         (("species", "soil", "weights"), [0, 0, 0], "weights cannot all be 0"),
         (("species", "soil", "reference"), [0.5, 2, 0], "species.soil.reference"),
