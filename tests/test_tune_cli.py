@@ -1,6 +1,7 @@
 """`sward tune` as a user runs it: a real process, its report, JSON, front plot and the project
 file it writes into."""
 
+import dataclasses
 import itertools
 import json
 import os
@@ -43,14 +44,20 @@ def test_a_quality_target_and_apply_write_the_chosen_levels_into_the_project(tmp
     env = {**os.environ, "SWARD_CACHE": "off"}
     r = sward(
         "tune", "--project", str(project), "--size", "160x90", "--candidates", "6",
-        "--quality", "0.9", "--apply", "--wind", "storm", env=env,
+        "--quality", "0.9", "--apply", "--wind", "storm", "--out", str(tmp_path / "t"), env=env,
     )  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert f"wrote the chosen LOD setting into {project}" in r.stdout
     after = load_project(project).lod(0)
     # every setting reaches FLIP 0.9: the cheapest of them is written, not the shipped one
     assert after != before
-    assert after.levels[0].end < before.levels[0].end  # the geometry zone is what costs
+    report = json.loads((tmp_path / "t" / "tune.json").read_text())
+    chosen = report["candidates"][report["chosen"]]
+    assert chosen["cost_ms"] <= report["shipped"]["cost_ms"]
+    written = [dataclasses.asdict(level) for level in after.levels]
+    assert [{k: v for k, v in level.items() if v is not None} for level in written] == [
+        {k: v for k, v in level.items() if v is not None} for level in report["chosen_lods"][0]
+    ]
     # only the levels: the storm the run was drawn in is not written (the scene's is off)
     assert not load_project(project).wind.enabled
 
