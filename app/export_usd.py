@@ -131,6 +131,11 @@ def _patch(path: Path, kind, gf, sdf, usd, geom, vt) -> int:
     st.Set(vt.Vec2fArray.FromNumpy(m["uv"]))
     threshold = primvars.CreatePrimvar("threshold", sdf.ValueTypeNames.FloatArray, "vertex")
     threshold.Set(vt.FloatArray.FromNumpy(m["threshold"]))
+    for name in ("ctrl1", "ctrl2"):  # the blade's curve from its root, as glTF's _CURVE1/2
+        curve = primvars.CreatePrimvar(
+            name.replace("ctrl", "curve"), sdf.ValueTypeNames.Vector3fArray, "vertex"
+        )
+        curve.Set(vt.Vec3fArray.FromNumpy(m[name]))
     stage.GetRootLayer().Save()
     return int(m["position"].shape[0])
 

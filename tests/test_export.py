@@ -179,6 +179,8 @@ def test_usd_lists_each_types_patch_and_its_instances(tmp_path):
         patch = UsdGeom.Mesh(stage.GetPrimAtPath(target))
         assert len(patch.GetPointsAttr().Get()) == len(generate_patch(kind.params).vertices)
         assert UsdGeom.PrimvarsAPI(patch).GetPrimvar("threshold").GetInterpolation() == "vertex"
+        curve = np.array(UsdGeom.PrimvarsAPI(patch).GetPrimvar("curve2").Get())
+        assert np.array_equal(curve, generate_patch(kind.params).vertices["ctrl2"])
     terrain = UsdGeom.Mesh(stage.GetPrimAtPath("/World/Terrain"))
     assert len(terrain.GetPointsAttr().Get()) == (document.terrain_spec.columns + 1) ** 2
 
