@@ -17,42 +17,42 @@ SIZE = (960, 540)
 CASES = (("bench", "zones"), ("football", "player"), ("meadow", "default"), ("meadow", "path"))
 
 
+def _times(renderer, camera, runs: int, modes: dict) -> tuple[dict, dict, dict]:
+    """Per mode (name -> segment LOD on): its frame, its triangles and its geometry pass's
+    times, the modes drawn in turns so that each sees the same machine."""
+    images, triangles, times = {}, {}, {mode: [] for mode in modes}
+    for mode, on in modes.items():  # warm: programs, slices, light tables
+        renderer.pipeline.segment_lod = on
+        images[mode], stats = renderer.render(camera, SIZE)
+        triangles[mode] = stats.triangles
+    for _ in range(runs):
+        for mode, on in modes.items():
+            renderer.pipeline.segment_lod = on
+            times[mode].append(renderer.render(camera, SIZE)[1].t_g_ms)
+    return images, triangles, {mode: statistics.median(t) for mode, t in times.items()}
+
+
 def compare(scene_name: str, camera_name: str, runs: int = 5) -> dict:
     from app.scenes import get_scene
     from render.headless import HeadlessRenderer
 
     doc = get_scene(scene_name).document()
-    renderer = HeadlessRenderer(doc)
     camera = doc.camera(camera_name)
-    modes = ("lod", "full", "one segment")
-    original = [grass.params for grass in doc.grass_types]
-    times: dict[str, list[float]] = {mode: [] for mode in modes}
-    images, triangles = {}, {}
-
-    def draw(mode: str):
-        renderer.pipeline.segment_lod = mode != "full"
-        for index, grass in enumerate(doc.grass_types):  # one segment: the patch made so
-            whole = original[index].subdivisions
-            doc.set_params(
-                index, grass.params.replace(subdivisions=1 if mode == "one segment" else whole)
-            )
-        return renderer.render(camera, SIZE)
-
-    for mode in modes:  # warm them all: programs, slices, light tables
-        images[mode], stats = draw(mode)
-        triangles[mode] = stats.triangles
-    for _ in range(runs):  # in turns, so each sees the same machine
-        for mode in modes:
-            times[mode].append(draw(mode)[1].t_g_ms)
+    renderer = HeadlessRenderer(doc)
+    images, triangles, ms = _times(renderer, camera, runs, {"lod": True, "full": False})
+    renderer.release()
+    for index, grass in enumerate(doc.grass_types):  # every patch of one-segment blades
+        doc.set_params(index, grass.params.replace(subdivisions=1))
+    renderer = HeadlessRenderer(doc)
+    _, _, single = _times(renderer, camera, runs, {"one": False})
     renderer.release()
     diff = Comparison.of(images["full"], images["lod"])
-    lod, full, one = (statistics.median(times[mode]) for mode in modes)
     return {
         "name": f"{scene_name}_{camera_name}_segments",
-        "geometry_ms": lod,
-        "full_segments_ms": full,
-        "speedup": full / lod if lod > 0 else 0.0,
-        "one_segment_speedup": full / one if one > 0 else 0.0,
+        "geometry_ms": ms["lod"],
+        "full_segments_ms": ms["full"],
+        "speedup": ms["full"] / ms["lod"] if ms["lod"] > 0 else 0.0,
+        "one_segment_speedup": ms["full"] / single["one"] if single["one"] > 0 else 0.0,
         "triangles": triangles["lod"],
         "full_triangles": triangles["full"],
         "flip": diff.flip_full,

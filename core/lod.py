@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.segments import TOLERANCE_PX
+
 REPRESENTATIONS = ("geometry", "volume", "image")
 REFERENCE_FOV = 50.0  # degrees: the field of view a LodConfig's view_height is taken at
 ALL_IN = 2.0  # w for a cell wholly inside one zone: every blade passes eq. 5.26's window
@@ -140,7 +142,7 @@ class LodConfig:
     view_height: float | None = None
     # blades far away drawn with fewer segments while their curve strays from its chords by at
     # most this many pixels (core/segments.py); 0: every blade with all its segments
-    segment_tolerance: float = 0.5
+    segment_tolerance: float = TOLERANCE_PX
 
     def __post_init__(self) -> None:
         levels = self.levels

@@ -29,6 +29,7 @@ from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.paint_rule import PaintRule
 from core.params import ParameterError, PatchParams, SliceParams
+from core.segments import TOLERANCE_PX
 from core.species import Species
 from core.wind import Wind
 
@@ -68,7 +69,7 @@ def _lod_from(data: dict) -> LodConfig:
         data.get("epsilon", 0.05),
         data.get("silhouettes", False),
         data.get("view_height"),
-        data.get("segment_tolerance", 0.5),
+        data.get("segment_tolerance", TOLERANCE_PX),
     )
 
 

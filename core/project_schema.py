@@ -16,6 +16,7 @@ import msgspec
 from msgspec import Meta
 
 from core.params import SLICE_COUNTS, PatchParams
+from core.segments import TOLERANCE_PX
 
 MAX_CELLS = 4096 * 4096  # terrain columns × rows (the quadtree's memory and build time)
 MAX_SIDE = 16384
@@ -72,7 +73,7 @@ class Lod(msgspec.Struct, forbid_unknown_fields=True):
     silhouettes: bool = False
     # the view height (pixels) the distances hold for; none: world units (core/lod.py)
     view_height: Annotated[float, Meta(ge=16.0, le=16384.0)] | None = None
-    segment_tolerance: Annotated[float, Meta(ge=0.0, le=8.0)] = 0.5
+    segment_tolerance: Annotated[float, Meta(ge=0.0, le=8.0)] = TOLERANCE_PX
 
 
 class Grass(msgspec.Struct, forbid_unknown_fields=True):

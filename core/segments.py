@@ -28,10 +28,11 @@ import numpy as np
 
 from core.wind import MAX_LEAN, MIDDLE_SHARE, curve_length
 
-# by default the chord may stray this far from the curve on screen: half a pixel, the spacing
-# of the samples a 4× multisampled pixel holds (a grass type's LOD settings may set another,
+# by default the chord may stray this far from the curve on screen: an eighth of a pixel, a
+# quarter of the spacing of the samples a 4× multisampled pixel holds, so a thin blade covers
+# nearly the samples it covers whole (a grass type's LOD settings may set another,
 # core/lod.py LodConfig.segment_tolerance)
-TOLERANCE_PX = 0.5
+TOLERANCE_PX = 0.125
 
 
 def level_count(subdivisions: int) -> int:

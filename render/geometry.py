@@ -62,7 +62,8 @@ class GeometryRenderer(InstancedRenderer):
         # pixels); set before the instances (render/frame_draw.py), None: every blade with all
         # its segments
         self.view: tuple | None = None
-        self._ranges: list[tuple[int, int, int]] = []  # (level, first instance, count)
+        # (level, first instance, count, whether any of them slides toward the next level)
+        self._ranges: list[tuple[int, int, int, bool]] = []
         self._scale = 0.0  # this frame's segments.error_scale (0: every row drawn)
         self._commands: moderngl.Buffer | None = None
 
@@ -110,7 +111,9 @@ class GeometryRenderer(InstancedRenderer):
         counts = np.bincount(levels, minlength=len(self._levels))
         firsts = np.cumsum(counts) - counts
         self._ranges = [
-            (k, int(a), int(n)) for k, (a, n) in enumerate(zip(firsts, counts, strict=True)) if n
+            (k, int(a), int(n), bool((f[a : a + n] > k + 1e-6).any()))
+            for k, (a, n) in enumerate(zip(firsts, counts, strict=True))
+            if n
         ]
 
     def triangles(self, visible: int) -> int:
@@ -118,7 +121,9 @@ class GeometryRenderer(InstancedRenderer):
         if self.patch is None:
             return 0
         blades = max(len(self.patch.roots), 1)
-        return sum(visible * n * (self._levels[k][1] // blades // 3) for k, _a, n in self._ranges)
+        return sum(
+            visible * n * (self._levels[k][1] // blades // 3) for k, _a, n, _m in self._ranges
+        )
 
     def _make_vao(self) -> moderngl.VertexArray | None:
         if self.vbo is None or self.instances is None or self.ibo is None:
@@ -159,14 +164,15 @@ class GeometryRenderer(InstancedRenderer):
         if self.vao is None or not self._ranges:
             return
         commands = np.array(
-            [(self._levels[k][1], n, self._levels[k][0], 0, first) for k, first, n in self._ranges],
+            [(self._levels[k][1], n, self._levels[k][0], 0, a) for k, a, n, _m in self._ranges],
             np.uint32,
         )
         self._commands = upload(self.ctx, self._commands, commands, grow_only=True)
         leveled = reads(self.program, "u_segment_level")
-        for j, (k, _first, _n) in enumerate(self._ranges):
-            if leveled:
+        for j, (k, _first, _n, slides) in enumerate(self._ranges):
+            if leveled:  # a draw where nothing slides skips the sliding's work
                 self.program["u_segment_level"].value = float(k)
+                self.program["u_segment_scale"].value = self._scale if slides else 0.0
             self.vao.render_indirect(self._commands, moderngl.TRIANGLES, count=1, first=j)
 
     def finalize(self) -> None:

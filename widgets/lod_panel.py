@@ -84,7 +84,7 @@ class LodPanel(QWidget):
         view_row = QHBoxLayout()
         view_row.addWidget(QLabel("Distances for a view"))
         view_row.addWidget(self.view_box, 1)
-        self.segments_box = QDoubleSpinBox(minimum=0.0, maximum=8.0, singleStep=0.25, decimals=2)
+        self.segments_box = QDoubleSpinBox(minimum=0.0, maximum=8.0, singleStep=0.125, decimals=3)
         self.segments_box.setSpecialValueText("all segments")
         self.segments_box.setSuffix(" px")
         self.segments_box.setKeyboardTracking(False)

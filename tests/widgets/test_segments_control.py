@@ -17,7 +17,7 @@ def _triangles(window) -> int:
 def test_the_segment_tolerance_draws_fewer_triangles_and_undo_takes_it_back(window, qtbot):
     document, box = window.document, window.lod_panel.segments_box
     window.resize(480, 360)  # a small view: most blades are few pixels tall
-    assert document.lod(0).segment_tolerance == 0.5 and box.value() == 0.5
+    assert document.lod(0).segment_tolerance == 0.125 and box.value() == 0.125
     steps = window.undo_stack.count()
     box.selectAll()
     qtbot.keyClicks(box, "4")
