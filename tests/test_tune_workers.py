@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from tests.test_cli import sward
-from tests.test_tune_cli import SMALL
+from tests.test_tune_cli import SMALL, whole_segments
 
 
 def _check_sweep(r, out: Path, cache: Path, where: str) -> None:
@@ -40,9 +40,10 @@ def _check_sweep(r, out: Path, cache: Path, where: str) -> None:
 def test_workers_draw_the_references_and_candidates_and_the_run_gathers_them(tmp_path):
     cache, out = tmp_path / "cache", tmp_path / "out"
     env = {**os.environ, "SWARD_CACHE": str(cache)}
-    r = sward("tune", *SMALL, "--candidates", "16", "--workers", "2", "--out", str(out), env=env)
+    small = whole_segments(tmp_path)
+    r = sward("tune", *small, "--candidates", "16", "--workers", "2", "--out", str(out), env=env)
     _check_sweep(r, out, cache, "2 local processes")
-    again = sward("tune", *SMALL, "--candidates", "2", "--workers", "2", env=env)
+    again = sward("tune", *small, "--candidates", "2", "--workers", "2", env=env)
     assert again.returncode == 0, again.stderr
     assert "references 0 drawn, 4 reused" in again.stdout
 
@@ -85,7 +86,7 @@ def test_a_sweep_runs_on_a_ray_cluster_the_test_starts(tmp_path):
                     time.sleep(0.5)
             out = tmp_path / "out"
             r = sward(
-                "tune", *SMALL, "--candidates", "16", "--ray", f"127.0.0.1:{port}",
+                "tune", *whole_segments(tmp_path), "--candidates", "16", "--ray", f"127.0.0.1:{port}",
                 "--out", str(out), env=env,
             )  # fmt: skip
             _check_sweep(r, out, tmp_path / "cache", f"2 Ray workers at 127.0.0.1:{port}")
