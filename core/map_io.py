@@ -146,6 +146,8 @@ def read_raw16(
         raise MapFileError(
             f"{path.name}: the height range {low:g} … {high:g} must be two finite numbers"
         )
+    if not abs(high - low) < float(np.finfo(np.float32).max) / 2:  # heights are float32
+        raise MapFileError(f"{path.name}: the height range {low:g} … {high:g} is too wide")
     _regular(path)
     expected = width * height * 2
     size = os.stat(path).st_size  # checked before anything is read

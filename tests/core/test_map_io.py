@@ -111,6 +111,14 @@ def test_a_raw_height_range_that_is_no_finite_number_is_refused_naming_the_file(
         read_raw16(path, 4, 4, low=low, high=high)
 
 
+@pytest.mark.parametrize("low,high", [(-3e38, 3e38), (1e308, -1e308)])
+def test_a_raw_height_range_wider_than_float_heights_is_refused(tmp_path, low, high):
+    path = tmp_path / "dem.r16"
+    path.write_bytes(np.zeros(16, "<u2").tobytes())
+    with pytest.raises(MapFileError, match=r"dem\.r16: the height range .* too wide"):
+        read_raw16(path, 4, 4, low=low, high=high)
+
+
 @pytest.mark.parametrize("mode", ["L", "I;16", "RGB", "RGBA", "P"])
 def test_an_image_read_at_the_maps_size_equals_one_read_whole_and_resampled(tmp_path, mode):
     from core.map_io import read_image_at
