@@ -300,6 +300,8 @@ def _maps(document, folder: Path, say) -> list[str]:
     names = []
     for layer in LAYERS:
         values = document.maps.layer(layer.name)[..., : layer.channels]
+        if layer.channels == 2:  # the trample map as a flow map: RG, blue 0 (a PNG's two
+            values = np.concatenate([values, np.zeros_like(values[..., :1])], axis=2)  # are LA)
         png16(folder / f"{layer.name}.png", values)
         _exr(folder / f"{layer.name}.exr", values)
         names += [f"{layer.name}.png", f"{layer.name}.exr"]

@@ -28,6 +28,9 @@ class BrushPanel(Protocol):
 
     def brush(self, mode: str | None = None) -> Brush: ...
 
+    @property
+    def follows(self) -> bool: ...  # strokes turn the brush's lean the way they go
+
     def show_message(self, text: str) -> None: ...
 
     def set_value(self, values) -> None: ...
@@ -70,7 +73,10 @@ class PaintController:
         layer, channel = self.panel.target
         try:
             brush = self.panel.brush(mode)
-            self.stroke = Stroke(self.document.maps, layer, brush, channel, self.rule_mask())
+            self.stroke = Stroke(
+                self.document.maps, layer, brush, channel, self.rule_mask(),
+                follow=self.panel.follows, texel=self._texel(),
+            )  # fmt: skip
         except ValueError as exc:
             self.panel.show_message(str(exc))
             return
@@ -108,6 +114,11 @@ class PaintController:
             mask = rule_mask(rule, heights, t.height_scale, (t.columns, t.rows))
             self._mask = ((rule, t), mask)
         return self._mask[1]
+
+    def _texel(self) -> tuple[float, float]:
+        """A map texel's size on the ground (x, z), in cells."""
+        t, (w, h) = self.document.terrain_spec, self.document.maps.size
+        return (t.columns / w, t.rows / h)
 
     def move(self, x: float, y: float) -> None:
         if self.stroke is not None:

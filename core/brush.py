@@ -7,11 +7,12 @@ stroke keeps the original texels of the tiles it touched, so undoing it restores
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from core.design_maps import LAYER_INDEX, LAYERS, DesignMaps
+from core.trample import decode, encode
 
 FALLOFFS = ("smooth", "linear", "constant", "sharp")
 MODES = ("paint", "erase", "smooth", "fill")
@@ -80,6 +81,10 @@ class Stroke:
     # (rows, columns) weights 0 … 1 over the map: where a rule lets the brush take
     # (core/paint_rule.py); None: everywhere
     mask: np.ndarray | None = None
+    # the trample map: the brush's lean turned the way the stroke moves on the ground, whose
+    # texels are `texel` (x, z) world units
+    follow: bool = False
+    texel: tuple[float, float] = (1.0, 1.0)
     saved: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
     after: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
     dabs: int = 0
@@ -117,11 +122,18 @@ class Stroke:
             return
         if self._last is None:
             self._last = (x, y)
-            self._stamp(x, y)
+            if not self._follows:
+                self._stamp(x, y)
             return
         step = max(self.brush.size * self.brush.spacing, 0.5)
         lx, ly = self._last
         length = math.hypot(x - lx, y - ly)
+        if self._follows:
+            if length == 0.0:
+                return
+            self._turn((x - lx) * self.texel[0], (y - ly) * self.texel[1])
+            if self.dabs == 0:
+                self._stamp(lx, ly)  # where it began, once the way it goes is known
         t = step - self._carry
         while t <= length:
             f = t / length
@@ -129,6 +141,16 @@ class Stroke:
             t += step
         self._carry = length - (t - step)
         self._last = (x, y)
+
+    @property
+    def _follows(self) -> bool:
+        return self.follow and self.brush.mode == "paint"
+
+    def _turn(self, dx: float, dz: float) -> None:
+        """The brush's lean, its amount kept, turned to the ground direction (dx, dz)."""
+        amount = float(np.linalg.norm(decode(np.asarray(self.brush.value))))
+        way = np.array([dx, dz]) / math.hypot(dx, dz)
+        self.brush = replace(self.brush, value=tuple(float(v) for v in encode(way * amount)))
 
     def _stamp(self, x: float, y: float) -> None:
         b = self.brush

@@ -1,6 +1,7 @@
 """The design-map stack (thesis 6.4, Fig. 6.7): maps projected along the terrain's up axis that
 shape the grass locally — density (6.4.1), colour modulation with alpha (6.4.2, eq. 6.8),
-ambient and diffuse light (6.4.3) and height (6.4.4).
+ambient and diffuse light (6.4.3), height (6.4.4) and trampled grass (the lean a path or a
+track gives the blades, core/trample.py).
 
 All layers share one size and live in one float array (layers, rows, columns, 4), row = v along
 z, column = u along x, so the GL mirror is one texture array and a renderer reaches every map
@@ -24,16 +25,21 @@ class MapLayer:
     channels: int
     default: tuple[float, float, float, float]
     description: str
+    top: float = 1.0  # the values a project file may hold: 0 … top
 
 
 LAYERS = (
     # one channel per grass type (thesis 6.4.5: several density maps), up to four types
     MapLayer("density", 4, (1.0, 1.0, 1.0, 1.0), "grass density per type, 0 bare … 1 full"),
     MapLayer("color", 4, (1.0, 1.0, 1.0, 0.0), "colour modulation: RGB and its weight A (eq. 6.8)"),
-    MapLayer("ambient", 3, (1.0, 1.0, 1.0, 0.0), "ambient light × scene occlusion (eq. 6.9)"),
-    MapLayer("diffuse", 3, (1.0, 1.0, 1.0, 0.0), "diffuse light, e.g. shadows (eq. 6.9)"),
+    MapLayer("ambient", 3, (1.0, 1.0, 1.0, 0.0), "ambient light × scene occlusion (eq. 6.9)", 4.0),
+    MapLayer("diffuse", 3, (1.0, 1.0, 1.0, 0.0), "diffuse light, e.g. shadows (eq. 6.9)", 4.0),
     MapLayer("height", 1, (0.0, 0.0, 0.0, 0.0), "terrain height, 0 … 1 times the height scale"),
+    # trampled grass (core/trample.py): the blades' lean (x, z), 0.5 + 0.5 · lean / MAX_LEAN
+    MapLayer("trample", 2, (0.5, 0.5, 0.0, 0.0), "trampled grass: the blades' lean, 0.5 none"),
 )
+# the layers a project file written before trampled grass holds (core/project_file.py)
+FIRST_LAYERS = 5
 LAYER_INDEX = {layer.name: i for i, layer in enumerate(LAYERS)}
 MAX_SIZE = 8192
 

@@ -185,7 +185,7 @@ def resample(values: np.ndarray, size: tuple[int, int]) -> np.ndarray:
 def fit_channels(values: np.ndarray, layer: str, single: bool) -> np.ndarray:
     """An image's channels as a map wants them: one value (density of one grass type, height),
     RGB + weight (colour: an image without alpha replaces the blades' colour fully), grey or
-    RGB light."""
+    RGB light, a flow map's R and G (the trample map)."""
     channels = LAYERS[LAYER_INDEX[layer]].channels
     rgb = values[..., :3] if values.shape[2] >= 3 else np.repeat(values[..., :1], 3, axis=2)
     grey = (
@@ -200,6 +200,8 @@ def fit_channels(values: np.ndarray, layer: str, single: bool) -> np.ndarray:
         return np.concatenate([rgb, alpha], axis=2).astype(np.float32)
     if channels == 3:
         return rgb.astype(np.float32)
+    if channels == 2 and values.shape[2] >= 3:  # the trample map from a flow map: R and G
+        return rgb[..., :2].astype(np.float32)
     return np.repeat(grey, channels, axis=2).astype(np.float32)
 
 

@@ -23,7 +23,7 @@ import msgspec
 import numpy as np
 
 from core import project_schema
-from core.design_maps import LAYERS, DesignMaps
+from core.design_maps import FIRST_LAYERS, LAYERS, DesignMaps
 from core.document import MAIN_GRASS, CameraSpec, Document, GrassType, Prop, TerrainSpec
 from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
@@ -45,7 +45,6 @@ MAX_JSON_BYTES = 16 << 20
 MAX_MAP_SIDE = 4096  # a project's maps: at most 4096 × 4096 texels (1.3 GB of float32)
 MAX_STACK_BYTES = len(LAYERS) * MAX_MAP_SIDE * MAX_MAP_SIDE * 4 * 4
 # the largest value each map may hold (the smallest is 0)
-MAP_RANGES = {"density": 1.0, "color": 1.0, "ambient": 4.0, "diffuse": 4.0, "height": 1.0}
 
 
 class ProjectError(Exception):
@@ -345,9 +344,13 @@ def _maps(z: zipfile.ZipFile, path: Path) -> np.ndarray:
             else:
                 raise ProjectError(f"cannot open {path}: maps.npz: unknown .npy version")
             _check_stack_header(shape, fortran, dtype, path)
-            stack = np.empty(shape, np.float32)
-            if _read_into(f, stack) != stack.nbytes:
+            # a file from before trampled grass holds the first layers: the rest take their
+            # defaults (nothing trampled)
+            stack = np.empty((len(LAYERS), *shape[1:]), np.float32)
+            if _read_into(f, stack[: shape[0]]) != stack[: shape[0]].nbytes:
                 raise ProjectError(f"cannot open {path}: maps.npz: the maps are truncated")
+            for i in range(shape[0], len(LAYERS)):
+                stack[i] = LAYERS[i].default
     _check_stack_values(stack, path)
     return stack
 
@@ -368,7 +371,7 @@ def _check_stack_header(shape, fortran: bool, dtype, path: Path) -> None:
     layers = len(LAYERS)
     ok = (
         len(shape) == 4
-        and shape[0] == layers
+        and shape[0] in (FIRST_LAYERS, layers)
         and shape[3] == 4
         and 1 <= shape[1] <= MAX_MAP_SIDE
         and 1 <= shape[2] <= MAX_MAP_SIDE
@@ -387,7 +390,7 @@ def _check_stack_values(stack: np.ndarray, path: Path) -> None:
     for i, layer in enumerate(LAYERS):
         values = stack[i, :, :, : layer.channels]
         low, high = float(values.min()), float(values.max())
-        top = MAP_RANGES[layer.name]
+        top = layer.top
         if not (0.0 <= low and high <= top):
             raise ProjectError(
                 f"cannot open {path}: maps.npz: the {layer.name} map must hold numbers in "

@@ -159,6 +159,22 @@ def lean(wind: Wind, xz: np.ndarray, time: float) -> np.ndarray:
     """The tip displacement (x, z) at world points xz (..., 2) and `time` seconds, as a
     fraction of a blade's length: gusts along the wind's heading, turbulence in any direction.
     Zero everywhere when the wind is off."""
+    return limit(_gusts(wind, xz, time))
+
+
+def grass_lean(wind: Wind, xz: np.ndarray, time: float, trampled: np.ndarray) -> np.ndarray:
+    """What the grass leans by at world points xz: the wind's lean and the trampled one
+    (core/trample.py) added, no further than MAX_LEAN (shaders/_wind.glsl grass_lean)."""
+    return limit(_gusts(wind, xz, time) + np.asarray(trampled, np.float64))
+
+
+def limit(lean_xz: np.ndarray) -> np.ndarray:
+    """Tip displacements no longer than MAX_LEAN."""
+    size = np.linalg.norm(lean_xz, axis=-1, keepdims=True)
+    return lean_xz * np.minimum(1.0, MAX_LEAN / np.maximum(size, 1e-9))
+
+
+def _gusts(wind: Wind, xz: np.ndarray, time: float) -> np.ndarray:
     xz = np.asarray(xz, np.float64)
     if not wind.enabled:
         return np.zeros(xz.shape)
@@ -168,9 +184,7 @@ def lean(wind: Wind, xz: np.ndarray, time: float) -> np.ndarray:
     eddy = sample_noise((xz - turbulence_shift) / (wind.turbulence_scale * tile))[..., 1:3]
     envelope = 0.5 * (1.0 + gust)  # 0 … 1: calm between gusts, full strength in one
     out = wind.heading * (wind.gust_strength * envelope)[..., None]
-    out = out + wind.turbulence_strength * eddy
-    size = np.linalg.norm(out, axis=-1, keepdims=True)
-    return out * np.minimum(1.0, MAX_LEAN / np.maximum(size, 1e-9))
+    return out + wind.turbulence_strength * eddy
 
 
 # Gauss-Legendre nodes and weights on 0 … 1: the length of a quadratic Bézier curve

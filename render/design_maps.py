@@ -36,11 +36,13 @@ from core.ground_mesh import (
     vertex_sink,
 )
 from core.mipmaps import mip_sizes, reduce_rect
+from core.trample import trampled
 from render import derived_cache
 from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
 DENSITY, HEIGHT = LAYER_INDEX["density"], LAYER_INDEX["height"]
 COLOR = LAYER_INDEX["color"]
+TRAMPLE = LAYER_INDEX["trample"]
 LIGHT_LAYERS = (LAYER_INDEX["ambient"], LAYER_INDEX["diffuse"])
 
 
@@ -126,6 +128,8 @@ class DesignMapTextures:
         # whether a light map holds anything but ones (FrameUniforms.light_maps): checked once,
         # and from the first edit of either on, painted (an undo back to ones keeps it so)
         self.light_maps = any(bool(np.any(maps.stack[i][..., :3] != 1.0)) for i in LIGHT_LAYERS)
+        # whether the trample map lays grass over anywhere (FrameUniforms.trampled): the same
+        self.trampled = trampled(maps.stack[TRAMPLE])
         maps.changed.connect(self.update)
 
     def _far_texels(self, rect: Rect) -> bytes:
@@ -246,6 +250,8 @@ class DesignMapTextures:
             self.pending[i] = union(self.pending.get(i), rect)
             if i in LIGHT_LAYERS:
                 self.light_maps = True
+            if i == TRAMPLE:
+                self.trampled = True
 
     def flush(self) -> None:
         """Upload the dirty rectangle of every edited map (the context must be current)."""

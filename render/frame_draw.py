@@ -81,7 +81,8 @@ def _upload(p: FramePipeline, frame: FrameUniforms, cells: list, stats: FrameSta
     for index, (grass, selected) in enumerate(zip(p.grass_types, cells, strict=True)):
         grass.image.view = (frame.eye, pixel, p.terrain)  # its slices' grids
         tolerance = grass.lod.segment_tolerance if p.segment_lod else 0.0
-        segments = (frame.eye, pixel, frame.wind.enabled, frame.draft, tolerance)
+        bent = frame.wind.enabled or frame.trampled  # the blades may bend their furthest
+        segments = (frame.eye, pixel, bent, frame.draft, tolerance)
         grass.geometry.view = segments if tolerance > 0 else None
         start = time.perf_counter()
         batches = grass.upload(selected, frame.eye, p.terrain, occupancy)

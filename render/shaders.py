@@ -55,11 +55,12 @@ def stage_source(name: str, stage: str, defines: tuple[str, ...] = ()) -> str:
     return "\n".join([lines[0], f"#define {stage}", *flags, "#line 2", *lines[1:]]) + "\n"
 
 
-def wind_defines(enabled: bool) -> tuple[str, ...]:
-    """The defines of a program's variant for still air or wind (shaders/_wind.glsl WIND_ON).
-    A CPU renderer runs both sides of a branch, so a uniform switch made still frames pay for
-    the wind's lookups and bends; the two variants draw the same picture as that switch did."""
-    return ("WIND",) if enabled else ()
+def wind_defines(enabled: bool, trampled: bool = False) -> tuple[str, ...]:
+    """The defines of a program's variant for still air or wind, and for upright or trampled
+    grass (shaders/_wind.glsl WIND_ON). A CPU renderer runs both sides of a branch, so a
+    uniform switch made still frames pay for the wind's lookups and bends; the variants draw
+    the same picture as that switch did."""
+    return (("WIND",) if enabled else ()) + (("TRAMPLE",) if trampled else ())
 
 
 def program_names() -> list[str]:

@@ -42,12 +42,16 @@ class FrameUniforms:
     # whether the ambient or the diffuse light map has been painted (DesignMapTextures
     # light_maps): programs read them only then
     light_maps: bool = False
+    # whether the trample map lays grass over anywhere (DesignMapTextures trampled)
+    trampled: bool = False
 
     @property
     def defines(self) -> tuple[str, ...]:
-        """The defines of the program variants this frame draws with: the wind's
-        (render/shaders.py wind_defines) and LIGHT_MAPS where the light maps are painted."""
-        return wind_defines(self.wind.enabled) + (("LIGHT_MAPS",) if self.light_maps else ())
+        """The defines of the program variants this frame draws with: the wind's and the
+        trampling's (render/shaders.py wind_defines) and LIGHT_MAPS where the light maps are
+        painted."""
+        light = ("LIGHT_MAPS",) if self.light_maps else ()
+        return wind_defines(self.wind.enabled, self.trampled) + light
 
     def apply(self, program: moderngl.Program, technique_color=(0.0, 0.0, 0.0)) -> None:
         """Set every frame uniform the program uses (others are skipped)."""
@@ -61,6 +65,7 @@ class FrameUniforms:
             "u_ao_impact": self.light.blade_ao_impact,
             "u_ao_height": self.light.blade_ao_height,
             "u_design": DESIGN_UNIT,
+            "u_trample": DESIGN_UNIT,
             "u_design_far": FAR_DESIGN_UNIT,
             "u_height_scale": float(self.height_scale),
             "u_technique_view": 1.0 if self.technique_view else 0.0,

@@ -117,8 +117,8 @@ void main() {
     v_rest2 = c2;
     vec3 side = cross(curve_tangent(c1, c2, t), normal);  // the strip's width direction
     v_side = dot(side, side) > 1e-12 ? normalize(side) : vec3(1.0, 0.0, 0.0);
-    // the wind bends the curve about the root (core/wind.py)
-    vec2 lean = wind_lean((in_origin + root) * u_cell_size);
+    // the wind and the trampling bend the curve about the root (core/wind.py)
+    vec2 lean = grass_lean((in_origin + root) * u_cell_size, design_uv(in_config, root));
     v_lean = lean;
     if (lean != vec2(0.0)) wind_bend(c1, c2, lean);
     v_bent1 = c1;

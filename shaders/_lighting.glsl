@@ -50,7 +50,7 @@ Facing facing_entry(vec3 to_eye) {
     return Facing(a.r, a.gb, b);
 }
 
-// the entry's diffuse factor with the blades bent by the wind's lean (_wind.glsl wind_lean)
+// the entry's diffuse factor with the blades bent by the wind's lean (_wind.glsl grass_lean)
 float facing_leaned(Facing f, vec2 lean) {
     vec2 x = clamp(lean, -LEAN_STEP, LEAN_STEP);
     return max(f.l + dot(f.g, x) + 0.5 * (f.h.x * x.x * x.x + 2.0 * f.h.y * x.x * x.y

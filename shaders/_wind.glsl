@@ -4,12 +4,15 @@
 // frequency and low amplitude); a blade is the quadratic Bézier curve of its trajectory, its tip
 // moved by the displacement, its middle control point by a quarter of it, and the curve scaled
 // about the root back to its length at rest.
-// whether the wind blows: a define, not a uniform (render/shaders.py wind_defines)
-#if defined WIND
+// whether the grass bends: the wind blows or the trample map lays it over (core/trample.py);
+// defines, not uniforms (render/shaders.py wind_defines)
+#if defined WIND || defined TRAMPLE
 const bool WIND_ON = true;
 #else
 const bool WIND_ON = false;
 #endif
+// the design-map stack (_design.glsl's u_design, the same texture unit), for its trample layer
+uniform sampler2DArray u_trample;
 uniform sampler2D u_wind_noise;  // r: gusts, gb: turbulence, each -1 … 1, repeating
 uniform vec2 u_wind_heading;     // unit (x, z) the wind blows towards
 uniform vec2 u_gust_shift;       // how far the patterns have travelled (world, wrapped)
@@ -31,12 +34,32 @@ vec3 wind_view(vec3 lit, vec2 lean) {
     return mix(lit, shown, u_wind_view);
 }
 
-// the tip displacement (x, z) at a world point, a fraction of a blade's length
-vec2 wind_lean(vec2 xz) {
-    if (!WIND_ON) return vec2(0.0);
+// the wind's tip displacement (x, z) at a world point, a fraction of a blade's length, before
+// grass_lean limits it
+vec2 wind_gusts(vec2 xz) {
+#if defined WIND
     float gust = textureLod(u_wind_noise, (xz - u_gust_shift) / u_gust_tile, 0.0).r;
     vec2 eddy = textureLod(u_wind_noise, (xz - u_turbulence_shift) / u_turbulence_tile, 0.0).gb;
-    vec2 w = u_wind_heading * (u_gust_strength * 0.5 * (1.0 + gust)) + u_turbulence_strength * eddy;
+    return u_wind_heading * (u_gust_strength * 0.5 * (1.0 + gust)) + u_turbulence_strength * eddy;
+#else
+    return vec2(0.0);
+#endif
+}
+
+// the trampled lean at a design-map uv (core/trample.py decode)
+vec2 trample_lean(vec2 uv) {
+#if defined TRAMPLE
+    return (textureLod(u_trample, vec3(uv, 5.0), 0.0).rg - 0.5) * (2.0 * WIND_MAX_LEAN);
+#else
+    return vec2(0.0);
+#endif
+}
+
+// what the grass leans by at a world point xz and its design-map uv: the wind's and the
+// trampled lean added, no further than WIND_MAX_LEAN (core/wind.py grass_lean)
+vec2 grass_lean(vec2 xz, vec2 uv) {
+    if (!WIND_ON) return vec2(0.0);
+    vec2 w = wind_gusts(xz) + trample_lean(uv);
     return w * min(1.0, WIND_MAX_LEAN / max(length(w), 1e-9));
 }
 

@@ -146,7 +146,7 @@ void main() {
     // the wind: the top view is read where the bent blades' upper parts, which it shows, came
     // from (Habel's sheared lookup, _wind.glsl)
     vec2 at = v_patch;
-    vec2 lean = wind_lean(v_origin + v_patch);
+    vec2 lean = grass_lean(v_origin + v_patch, v_design);
     WindShear shear = wind_still(u_grass_height);
     if (WIND_ON) {
         shear = wind_shear(lean, u_grass_height);

@@ -549,7 +549,7 @@ void main() {
     if (WIND_ON) {
         float over = e.y - ground_under(e.xz);
         float run = d.y < -1e-4 ? clamp((over - 0.5 * u_height) / -d.y, 0.0, 4.0) : 0.0;
-        lean = wind_lean(v_origin + e.xz + run * d.xz);
+        lean = grass_lean(v_origin + e.xz + run * d.xz, design_uv(v_config, e.xz + run * d.xz));
         shear = wind_shear(lean, u_height);
     }
     // the blades' mean diffuse factor seen along the ray, as bent by the wind here

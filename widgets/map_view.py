@@ -113,6 +113,8 @@ class MapView(QWidget):
         elif self.layer == "color":  # the tint over grey by its weight: grey = no tint
             weight = values[..., 3:4]
             values = values[..., :3] * weight + 0.5 * (1.0 - weight)
+        elif self.layer == "trample":  # a flow map: red, green the lean's x, z; grey upright
+            values = np.concatenate([values, np.full_like(values[..., :1], 0.5)], axis=2)
         self.image.setImage(values, levels=LEVELS.get(self.layer, (0.0, 1.0)), autoLevels=False)
 
     def show_mask(self, mask: np.ndarray | None) -> None:

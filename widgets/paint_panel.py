@@ -1,12 +1,14 @@
 """The brush panel: which map is painted (density per grass type, colour, ambient, diffuse,
-height), the mode and the brush (size, strength, target value, falloff, spacing). It shows the
+height, trampled grass), the mode and the brush (size, strength, target value, falloff, spacing). It shows the
 brush and reports edits; strokes are made by the designer's paint controller."""
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
+    QCheckBox,
     QColorDialog,
     QComboBox,
     QDoubleSpinBox,
@@ -20,6 +22,8 @@ from PySide6.QtWidgets import (
 )
 
 from core.brush import ALL_TYPES, FALLOFFS, MODES, Brush
+from core.trample import brush_value, decode
+from core.wind import MAX_LEAN
 from widgets.rule_box import RuleBox
 
 SCALAR_LAYERS = {  # map -> (value label, maximum)
@@ -27,6 +31,7 @@ SCALAR_LAYERS = {  # map -> (value label, maximum)
     "ambient": ("Ambient light", 2.0),
     "diffuse": ("Diffuse light", 2.0),
     "height": ("Height", 1.0),
+    "trample": ("Lay over", MAX_LEAN),  # the tips' displacement, a fraction of the blades' length
 }
 
 
@@ -69,6 +74,21 @@ class PaintPanel(QWidget):
         self.color_row.setLayout(colour_row)
         colour_row.setContentsMargins(0, 0, 0, 0)
         form.addRow("Colour", self.color_row)
+        # trampled grass: the way the blades lie, or the way the stroke goes (a path walked)
+        self.direction_box = QDoubleSpinBox(minimum=0.0, maximum=360.0, wrapping=True, suffix="°")
+        self.direction_box.setToolTip("the way the blades lie: 0° along +x, 90° along +z")
+        self.along_box = QCheckBox("along the stroke")
+        self.along_box.setChecked(True)
+        self.along_box.setToolTip("lay the blades the way the brush moves, as feet would")
+        self.along_box.toggled.connect(lambda on: self.direction_box.setEnabled(not on))
+        self.direction_box.setEnabled(False)
+        way_row = QHBoxLayout()
+        way_row.addWidget(self.direction_box, 1)
+        way_row.addWidget(self.along_box)
+        way_row.setContentsMargins(0, 0, 0, 0)
+        self.way_row = QWidget()
+        self.way_row.setLayout(way_row)
+        form.addRow("Direction", self.way_row)
         self.form = form
         self.falloff_box = QComboBox()
         self.falloff_box.addItems(FALLOFFS)
@@ -117,8 +137,10 @@ class PaintPanel(QWidget):
             self.value_box,
             self.alpha_box,
             self.spacing_box,
+            self.direction_box,
         ):
             box.valueChanged.connect(self._changed)
+        self.along_box.toggled.connect(self._changed)
         self._changed()
 
     def set_grass_names(self, names: list[str]) -> None:
@@ -132,6 +154,7 @@ class PaintPanel(QWidget):
         self.layer_box.addItem("ambient light", ("ambient", None))
         self.layer_box.addItem("diffuse light", ("diffuse", None))
         self.layer_box.addItem("height", ("height", None))
+        self.layer_box.addItem("trampled grass", ("trample", None))
         self.layer_box.blockSignals(False)
         self._brush_of = self.target
 
@@ -168,7 +191,14 @@ class PaintPanel(QWidget):
                 self.alpha_box.value(),
             )
         v = self.value_box.value()
+        if layer == "trample":
+            return brush_value(v, self.direction_box.value())
         return (v, v, v) if layer in ("ambient", "diffuse") else (v,)
+
+    @property
+    def follows(self) -> bool:
+        """Whether strokes turn the brush's lean the way they go (the trample map)."""
+        return self.target[0] == "trample" and self.along_box.isChecked()
 
     def brush(self, mode: str | None = None) -> Brush:
         return Brush(
@@ -187,6 +217,11 @@ class PaintPanel(QWidget):
             r, g, b, a = (float(v) for v in values[:4])
             self.color = QColor.fromRgbF(min(r, 1.0), min(g, 1.0), min(b, 1.0))
             self.alpha_box.setValue(a)
+        elif layer == "trample":
+            x, z = decode(np.asarray(values[:2], np.float64))
+            self.value_box.setValue(float(np.hypot(x, z)))
+            self.direction_box.setValue(float(np.degrees(np.arctan2(z, x))) % 360.0)
+            self.along_box.setChecked(False)  # the picked direction, not the stroke's
         else:
             self.value_box.setValue(float(values[0]))
         self._changed()
@@ -202,6 +237,8 @@ class PaintPanel(QWidget):
             "alpha": self.alpha_box.value(),
             "falloff": self.falloff_box.currentIndex(),
             "spacing": self.spacing_box.value(),
+            "direction": self.direction_box.value(),
+            "along": self.along_box.isChecked(),
         }
 
     def _switch_map(self, *_) -> None:
@@ -211,7 +248,8 @@ class PaintPanel(QWidget):
         kept = self._brushes.get(self._brush_of)
         layer, _ = self._brush_of
         boxes = (self.mode_box, self.size_box, self.strength_box, self.value_box,
-                 self.alpha_box, self.falloff_box, self.spacing_box)  # fmt: skip
+                 self.alpha_box, self.falloff_box, self.spacing_box, self.direction_box,
+                 self.along_box)  # fmt: skip
         for box in boxes:
             box.blockSignals(True)
         try:
@@ -226,6 +264,8 @@ class PaintPanel(QWidget):
                 self.alpha_box.setValue(kept["alpha"])
                 self.falloff_box.setCurrentIndex(kept["falloff"])
                 self.spacing_box.setValue(kept["spacing"])
+                self.direction_box.setValue(kept["direction"])
+                self.along_box.setChecked(kept["along"])
         finally:
             for box in boxes:
                 box.blockSignals(False)
@@ -248,6 +288,7 @@ class PaintPanel(QWidget):
         is_color = layer == "color"
         self.form.setRowVisible(self.color_row, is_color)
         self.form.setRowVisible(self.value_box, not is_color)
+        self.form.setRowVisible(self.way_row, layer == "trample")
         if not is_color:
             label, high = SCALAR_LAYERS[layer]
             self.value_label.setText(label)

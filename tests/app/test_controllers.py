@@ -34,6 +34,7 @@ def panel(layer="density", channel=0, brush=None):
     p.target = (layer, channel)
     p.target_label = f"{layer} map"
     p.brush.return_value = brush or Brush(size=16.0, strength=1.0, value=(0.0,))
+    p.follows = False
     return p
 
 
@@ -53,6 +54,29 @@ def test_a_stroke_paints_the_documents_map_and_becomes_one_step():
     strokes[0][0].undo()
     assert document.maps.layer("density")[..., 0].min() == 1.0
     assert heights == []  # a density stroke leaves the terrain alone
+
+
+def test_a_trample_stroke_lays_the_grass_the_way_it_goes_on_the_ground():
+    """Maps of 256 × 128 texels over 8 × 8 cells: a stroke across as many texels each way
+    goes half as far along x as along z on the ground, and the blades lie that way."""
+    from core.design_maps import DesignMaps
+    from core.project_file import document_data, document_from_data
+    from core.trample import brush_value, decode
+    from core.wind import MAX_LEAN
+
+    document = document_from_data(document_data(doc()), DesignMaps(256, 128).stack)
+    brush = Brush(size=8.0, strength=1.0, value=brush_value(0.5, 90.0), falloff="constant")
+    p = panel("trample", None, brush)
+    p.follows = True
+    strokes = []
+    painter = PaintController(document, p, lambda s, t: strokes.append(s), lambda: None)
+    painter.press(40.0, 40.0)
+    painter.move(80.0, 80.0)
+    painter.release()
+    x, z = decode(document.maps.layer("trample")[60, 60])
+    assert np.isclose(np.hypot(x, z), 0.5, atol=1e-3) and 0.5 <= MAX_LEAN
+    assert np.isclose(z / x, 2.0, atol=1e-3)  # not the brush's 90°
+    assert len(strokes) == 1
 
 
 def test_erase_and_smooth_override_the_brush_mode():

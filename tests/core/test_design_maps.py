@@ -11,7 +11,9 @@ def test_new_maps_are_neutral():
     assert np.all(maps.layer("color")[..., 3] == 0)  # no colour modulation
     assert np.all(maps.layer("ambient") == 1) and np.all(maps.layer("diffuse") == 1)
     assert np.all(maps.layer("height") == 0)
-    assert [layer.name for layer in LAYERS] == ["density", "color", "ambient", "diffuse", "height"]
+    assert np.all(maps.layer("trample") == 0.5)  # the grass stands upright
+    names = ["density", "color", "ambient", "diffuse", "height", "trample"]
+    assert [layer.name for layer in LAYERS] == names
 
 
 def test_write_announces_only_the_rectangle_it_changed():

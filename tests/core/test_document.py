@@ -12,7 +12,7 @@ from core.lighting import Lighting
 from core.lod import LodConfig, LodLevel
 from core.paint_rule import PaintRule
 from core.params import PRESETS, SLICE_COUNTS, PatchParams, SliceParams
-from core.project_file import MAP_RANGES, load_project, save_project
+from core.project_file import load_project, save_project
 from core.species import Species, SpeciesTuning
 
 finite = st.floats(-500.0, 500.0, allow_nan=False, width=32)
@@ -87,9 +87,7 @@ def documents(draw) -> Document:
     stack = [  # every map within the range a project file allows (core/project_file.py)
         v
         for layer in LAYERS
-        for v in draw(
-            st.lists(st.floats(0.0, MAP_RANGES[layer.name], width=32), min_size=n, max_size=n)
-        )
+        for v in draw(st.lists(st.floats(0.0, layer.top, width=32), min_size=n, max_size=n))
     ]
     maps = DesignMaps.from_stack(np.array(stack, np.float32).reshape(len(LAYERS), h, w, 4))
     named = draw(

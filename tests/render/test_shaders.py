@@ -50,9 +50,12 @@ EXPECTED = {
 
 
 @pytest.mark.parametrize("name", program_names())
-@pytest.mark.parametrize("wind", [False, True], ids=["still", "wind"])
-def test_every_shader_compiles_with_expected_inputs(ctx, name, wind):
-    program = load_program(ctx, name, wind_defines(wind))
+@pytest.mark.parametrize(
+    "wind,trampled", [(False, False), (True, False), (False, True), (True, True)],
+    ids=["still", "wind", "trampled", "both"],
+)  # fmt: skip
+def test_every_shader_compiles_with_expected_inputs(ctx, name, wind, trampled):
+    program = load_program(ctx, name, wind_defines(wind, trampled))
     assert EXPECTED.get(name, set()) <= set(program)
 
 
@@ -78,6 +81,13 @@ def test_wind_variant_is_its_own_program_and_reads_the_wind(ctx):
     assert windy is load_program(ctx, "geometry.glsl", ("WIND",))
     # still air reads no wind noise; the wind's variant does
     assert "u_wind_noise" not in still and "u_wind_noise" in windy
+
+
+@pytest.mark.parametrize("name", ["geometry.glsl", "volume.glsl", "image.glsl"])
+def test_trampled_grass_reads_the_trample_map_and_no_wind(ctx, name):
+    trodden = load_program(ctx, name, wind_defines(False, True))
+    assert "u_trample" in trodden and "u_wind_noise" not in trodden
+    assert "u_trample" not in load_program(ctx, name)
 
 
 def test_every_program_is_known():
