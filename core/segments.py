@@ -99,17 +99,18 @@ def level_widths(centres: np.ndarray) -> np.ndarray:
     return out
 
 
-def curvature(ctrl1: np.ndarray, ctrl2: np.ndarray, wind: bool) -> float:
+def curvature(ctrl1: np.ndarray, ctrl2: np.ndarray, lean: float = 0.0) -> float:
     """The largest |g| of a patch's blades (patch units), given their Bézier control points
-    (B(t) = 2t(1 − t) c1 + t² c2, so g = c2 − 2 c1); with the wind, its largest bend added: the
-    tip moves by up to MAX_LEAN of the blade's length and the middle control point by
-    MIDDLE_SHARE of that (core/wind.py bend)."""
+    (B(t) = 2t(1 − t) c1 + t² c2, so g = c2 − 2 c1); bent by the wind or trampled, the largest
+    bend added: the tip moves by up to `lean` of the blade's length (at most MAX_LEAN) and the
+    middle control point by MIDDLE_SHARE of that, and the curve shrinks back to its length
+    (core/wind.py bend), which does not make |g| larger."""
     c1, c2 = np.asarray(ctrl1, np.float64), np.asarray(ctrl2, np.float64)
     if not len(c1):
         return 0.0
     g = np.linalg.norm(c2 - 2.0 * c1, axis=-1)
-    if wind:
-        g = g + abs(1.0 - 2.0 * MIDDLE_SHARE) * MAX_LEAN * curve_length(c1, c2)
+    if lean > 0.0:
+        g = g + abs(1.0 - 2.0 * MIDDLE_SHARE) * min(lean, MAX_LEAN) * curve_length(c1, c2)
     return float(g.max())
 
 

@@ -49,6 +49,13 @@ def trampled(texels: np.ndarray) -> bool:
     return bool(np.any(np.asarray(texels)[..., :2] != UPRIGHT))
 
 
+def largest_lean(texels: np.ndarray) -> float:
+    """The longest lean the texels hold (0: the grass stands everywhere)."""
+    if not trampled(texels):
+        return 0.0
+    return float(np.linalg.norm(decode(texels), axis=-1).max())
+
+
 def lean_at(texels: np.ndarray, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """The trampled lean (..., 2) at design-map uv, read as the GPU's linear filter reads the
     map (clamp to edge)."""

@@ -89,6 +89,15 @@ class Wind:
         return cls(**data)
 
     @property
+    def largest_lean(self) -> float:
+        """The most the wind displaces a tip (a fraction of the blade's length; 0 when it is
+        off): the gusts' full strength and the turbulence's two components at their largest
+        together (lean's noise channels lie in -1 … 1)."""
+        if not self.enabled:
+            return 0.0
+        return min(MAX_LEAN, self.gust_strength + math.sqrt(2.0) * self.turbulence_strength)
+
+    @property
     def reach(self) -> float:
         """The blade reach the frames draw with: blade_reach while the wind blows, else 1."""
         return self.blade_reach if self.enabled else 1.0

@@ -36,7 +36,7 @@ from core.ground_mesh import (
     vertex_sink,
 )
 from core.mipmaps import mip_sizes, reduce_rect
-from core.trample import trampled
+from core.trample import largest_lean
 from render import derived_cache
 from render.uniforms import DESIGN_UNIT, FAR_DESIGN_UNIT, GROUND_UNIT
 
@@ -128,8 +128,9 @@ class DesignMapTextures:
         # whether a light map holds anything but ones (FrameUniforms.light_maps): checked once,
         # and from the first edit of either on, painted (an undo back to ones keeps it so)
         self.light_maps = any(bool(np.any(maps.stack[i][..., :3] != 1.0)) for i in LIGHT_LAYERS)
-        # whether the trample map lays grass over anywhere (FrameUniforms.trampled): the same
-        self.trampled = trampled(maps.stack[TRAMPLE])
+        # the most the trample map lays grass over (FrameUniforms.trample_lean): the whole map
+        # once, then what each edit's rectangle holds (an undo keeps it, as for the light maps)
+        self.trample_lean = largest_lean(maps.stack[TRAMPLE])
         maps.changed.connect(self.update)
 
     def _far_texels(self, rect: Rect) -> bytes:
@@ -251,7 +252,9 @@ class DesignMapTextures:
             if i in LIGHT_LAYERS:
                 self.light_maps = True
             if i == TRAMPLE:
-                self.trampled = True
+                x, y, w, h = rect
+                lean = largest_lean(self.maps.stack[TRAMPLE, y : y + h, x : x + w])
+                self.trample_lean = max(self.trample_lean, lean)
 
     def flush(self) -> None:
         """Upload the dirty rectangle of every edited map (the context must be current)."""

@@ -349,7 +349,7 @@ class FramePipeline:
             time=self.time,
             draft=draft,
             light_maps=self.map_textures.light_maps,
-            trampled=self.map_textures.trampled,
+            trample_lean=self.map_textures.trample_lean,
         )
         stats.t_q_ms += (time.perf_counter() - tq) * 1000.0
         frustum = Frustum.from_camera(camera, w / max(h, 1)) if self.culling else None

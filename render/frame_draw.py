@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from core.stats import FrameStats
+from core.wind import MAX_LEAN
 from render.uniforms import FrameUniforms
 from render.volume_order import DEPTH_BANDS, beneath_heights, distance_bands, stacked_parts
 
@@ -81,8 +82,8 @@ def _upload(p: FramePipeline, frame: FrameUniforms, cells: list, stats: FrameSta
     for index, (grass, selected) in enumerate(zip(p.grass_types, cells, strict=True)):
         grass.image.view = (frame.eye, pixel, p.terrain)  # its slices' grids
         tolerance = grass.lod.segment_tolerance if p.segment_lod else 0.0
-        bent = frame.wind.enabled or frame.trampled  # the blades may bend their furthest
-        segments = (frame.eye, pixel, bent, frame.draft, tolerance)
+        lean = min(frame.wind.largest_lean + frame.trample_lean, MAX_LEAN)  # the most they bend
+        segments = (frame.eye, pixel, lean, frame.draft, tolerance)
         grass.geometry.view = segments if tolerance > 0 else None
         start = time.perf_counter()
         batches = grass.upload(selected, frame.eye, p.terrain, occupancy)

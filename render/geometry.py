@@ -57,10 +57,11 @@ class GeometryRenderer(InstancedRenderer):
         self.patch: GrassPatch | None = None
         self.density = 1.0
         self._levels: list[tuple[int, int]] = []  # (first index, index count) per level
-        self._curvature = (0.0, 0.0)  # core/segments.py curvature: still air, wind
-        # where the frame is seen from: (eye, radians per pixel, wind on, draft, tolerance in
-        # pixels); set before the instances (render/frame_draw.py), None: every blade with all
-        # its segments
+        # core/segments.py curvature of the patch's blades, by the largest lean they bend by
+        self._curvature: dict[float, float] = {}
+        # where the frame is seen from: (eye, radians per pixel, the largest lean the wind and
+        # the trampling give, draft, tolerance in pixels); set before the instances
+        # (render/frame_draw.py), None: every blade with all its segments
         self.view: tuple | None = None
         # (level, first instance, count, whether any of them slides toward the next level)
         self._ranges: list[tuple[int, int, int, bool]] = []
@@ -83,9 +84,7 @@ class GeometryRenderer(InstancedRenderer):
         starts = np.cumsum([0] + [len(p) for p in parts])
         self._levels = [(int(a), len(p)) for a, p in zip(starts, parts, strict=False)]
         v = patch.vertices
-        self._curvature = tuple(  # type: ignore[assignment]
-            segments.curvature(v["ctrl1"], v["ctrl2"], wind) for wind in (False, True)
-        )
+        self._curvature = {}
         vbo = upload(self.ctx, self.vbo, v)
         ibo = upload(self.ctx, self.ibo, np.concatenate(parts))
         if vbo is not self.vbo or ibo is not self.ibo:
@@ -98,9 +97,12 @@ class GeometryRenderer(InstancedRenderer):
         f = np.zeros(instances.size)
         self._scale = 0.0
         if self.view is not None and len(self._levels) > 1 and instances.size:
-            eye, pixel, wind, draft, tolerance = self.view
+            eye, pixel, lean, draft, tolerance = self.view
             s = self.patch.params.subdivisions
-            g = self._curvature[1 if wind else 0]
+            if lean not in self._curvature:
+                v = self.patch.vertices
+                self._curvature[lean] = segments.curvature(v["ctrl1"], v["ctrl2"], lean)
+            g = self._curvature[lean]
             self._scale = min(segments.error_scale(g, s, 1.0, pixel, tolerance), 1e30)
             distance = segments.cell_distance(eye, instances, 1.0, self.patch.height)
             f = segments.segment_level(distance, self._scale, len(self._levels), int(draft))

@@ -42,8 +42,12 @@ class FrameUniforms:
     # whether the ambient or the diffuse light map has been painted (DesignMapTextures
     # light_maps): programs read them only then
     light_maps: bool = False
-    # whether the trample map lays grass over anywhere (DesignMapTextures trampled)
-    trampled: bool = False
+    # the most the trample map lays grass over (DesignMapTextures trample_lean): 0, nowhere
+    trample_lean: float = 0.0
+
+    @property
+    def trampled(self) -> bool:
+        return self.trample_lean > 0.0
 
     @property
     def defines(self) -> tuple[str, ...]:

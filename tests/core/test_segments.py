@@ -19,7 +19,7 @@ def test_a_levels_chords_stay_within_its_error_bound(preset, subdivisions):
     patch = generate_patch(PRESETS[preset].replace(blade_count=60, subdivisions=subdivisions))
     c1 = patch.vertices["ctrl1"][::2].reshape(60, -1, 3)[:, 0].astype(np.float64)
     c2 = patch.vertices["ctrl2"][::2].reshape(60, -1, 3)[:, 0].astype(np.float64)
-    g = segments.curvature(c1, c2, wind=False)
+    g = segments.curvature(c1, c2)
     e0 = g / (4.0 * subdivisions**2)
     fine = np.linspace(0.0, 1.0, 257)
     curve = curve_point(c1[:, None], c2[:, None], fine[None, :])
@@ -73,9 +73,23 @@ def test_the_level_rises_with_distance_and_keeps_the_chord_within_the_tolerance(
 def test_the_wind_bends_the_curve_further_so_segments_stay_finer():
     patch = generate_patch(PRESETS[sorted(PRESETS)[0]].replace(blade_count=50))
     v = patch.vertices
-    assert segments.curvature(v["ctrl1"], v["ctrl2"], True) > segments.curvature(
-        v["ctrl1"], v["ctrl2"], False
-    )
+    rest, breeze, storm = (segments.curvature(v["ctrl1"], v["ctrl2"], x) for x in (0, 0.3, 0.9))
+    assert rest < breeze < storm == segments.curvature(v["ctrl1"], v["ctrl2"], 5.0)
+
+
+@pytest.mark.parametrize("lean", [0.2, 0.5, 0.9])
+def test_a_bent_blades_curvature_stays_within_the_bound_for_its_lean(lean):
+    """Every blade bent by `lean` in any direction (core/wind.py bend) keeps |g| within the
+    curvature the segment levels are chosen by for that lean."""
+    from core.wind import bend
+
+    patch = generate_patch(PRESETS[sorted(PRESETS)[-1]].replace(blade_count=40))
+    c1 = patch.vertices["ctrl1"].astype(np.float64)
+    c2 = patch.vertices["ctrl2"].astype(np.float64)
+    bound = segments.curvature(c1, c2, lean)
+    for a in np.linspace(0.0, 2.0 * np.pi, 12, endpoint=False):
+        b1, b2 = bend(c1, c2, np.tile([lean * np.cos(a), lean * np.sin(a)], (len(c1), 1)))
+        assert np.linalg.norm(b2 - 2.0 * b1, axis=-1).max() <= bound + 1e-9
 
 
 def test_an_instances_distance_is_to_its_nearest_point():
