@@ -35,6 +35,9 @@ SCALAR_LAYERS = {  # map -> (value label, maximum)
 }
 
 
+TRAMPLE_DEFAULT = 0.5  # a trodden path's first lean: the blades half laid over
+
+
 class PaintPanel(QWidget):
     brush_changed = Signal()
     import_requested = Signal()
@@ -255,6 +258,8 @@ class PaintPanel(QWidget):
         try:
             if layer in SCALAR_LAYERS:
                 self.value_box.setMaximum(SCALAR_LAYERS[layer][1])
+            if kept is None and layer == "trample":
+                self.value_box.setValue(TRAMPLE_DEFAULT)
             if kept is not None:
                 self.mode_box.setCurrentIndex(kept["mode"])
                 self.size_box.setValue(kept["size"])
