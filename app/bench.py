@@ -24,6 +24,7 @@ SUITES = (
     "volume_cost",
     "wind",
     "segments",
+    "shadows",
 )
 MODULES = {"techniques": "representations"}
 

@@ -162,8 +162,12 @@ def set_slices(doc: Document, new: SliceParams) -> SetValue:
 
 
 def set_light(doc: Document, new: Lighting, gesture: int | None = None) -> SetValue:
-    """A light edit; those of one drag of the sun dial (`gesture`) are one undo step."""
-    return SetValue("change light", doc, "light", doc.light, new, merge_id=2, gesture=gesture)
+    """A light edit; those of one drag of the sun dial (`gesture`) are one undo step, and
+    switching the blade shadows on or off is one of its own."""
+    switch = new.blade_shadows != doc.light.blade_shadows
+    return SetValue(
+        "change light", doc, "light", doc.light, new, merge_id=-1 if switch else 2, gesture=gesture
+    )
 
 
 def set_wind(doc: Document, new: Wind) -> SetValue:

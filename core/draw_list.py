@@ -9,6 +9,7 @@ without macro-cells (the thesis's Table 7.1 comparisons)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,6 +33,9 @@ class DrawList:
     batches: dict[Key, np.ndarray] = field(default_factory=dict)
     # per key, the transitions' distances a shader weighs each blade by (core/lod.py fades)
     fades: dict[Key, tuple[float, float, float, float]] = field(default_factory=dict)
+    # where the geometry draws blades: (begin, end) of its levels, None where it has none (the
+    # ground casts the other blades' shadows, render/shadows.py)
+    blades: tuple[float, float] | None = None
 
     def counts(self) -> dict[Key, int]:
         return {key: int(cells.size) for key, cells in self.batches.items()}
@@ -65,6 +69,10 @@ def draw_list(
     for level, part in zip(config.levels, parts, strict=True):
         grouped.setdefault(level.key, []).append(part)
     out = DrawList(fades=lod_fades(config))
+    geometry = [level for level in config.levels if level.representation == "geometry"]
+    if geometry:
+        ends = [math.inf if level.end is None else level.end for level in geometry]
+        out.blades = (min(level.begin for level in geometry), max(ends))
     for key, chunks in grouped.items():
         cells = np.concatenate(chunks) if len(chunks) > 1 else chunks[0]
         out.batches[key] = back_to_front(cells, eye) if key[0] == "volume" else cells

@@ -19,6 +19,10 @@ class Lighting:
     sky_color: tuple[float, float, float] = (0.62, 0.75, 0.90)
     soil_color: tuple[float, float, float] = (0.30, 0.25, 0.17)
     fog_distance: float = 160.0
+    # blades cast shadows on the ground along the sun (Papavasiliou 3.6, core/shadows.py): how
+    # much of the sun's light a blade's shadow takes (its screen-door coverage)
+    blade_shadows: bool = False
+    shadow_strength: float = 0.6
 
     def __post_init__(self) -> None:
         if not -10.0 <= self.sun_elevation <= 90.0:
@@ -27,7 +31,9 @@ class Lighting:
             colour = getattr(self, name)
             if len(colour) != 3 or not all(0.0 <= c <= 4.0 for c in colour):
                 raise ValueError(f"{name} must be three values in 0 … 4, got {colour}")
-        for name in ("translucency", "blade_ao_impact"):
+        if not isinstance(self.blade_shadows, bool):
+            raise ValueError("blade_shadows must be true or false")
+        for name in ("translucency", "blade_ao_impact", "shadow_strength"):
             if not 0.0 <= getattr(self, name) <= 1.0:
                 raise ValueError(f"{name} = {getattr(self, name):g} is out of range; 0 … 1")
         if self.blade_ao_height <= 0 or self.fog_distance <= 0:

@@ -11,7 +11,7 @@ import numpy as np
 
 from core.stats import FrameStats
 
-COLUMNS = ("fps", "t_a", "t_q", "t_g", "t_v", "t_i", "t_m", "c_g", "c_v", "c_i")
+COLUMNS = ("fps", "t_a", "t_q", "t_g", "t_v", "t_i", "t_m", "t_s", "c_g", "c_v", "c_i")
 # what each column of the overlay means, beside its figures (the thesis's names are short)
 MEANING = {
     "fps": "frames a second",
@@ -21,11 +21,12 @@ MEANING = {
     "t_v": "ms, volume",
     "t_i": "ms, image-based",
     "t_m": "ms, ground and props",
+    "t_s": "ms, blade shadows",
     "c_g": "geometry instances",
     "c_v": "volume instances",
     "c_i": "image-based instances",
 }
-# The parts (t_q + t_u + t_g + t_v + t_i + t_m + t_o) must lie within this fraction of t_a, plus a
+# The parts (t_q + t_u + t_g + t_v + t_i + t_m + t_s + t_o) must lie within this fraction of t_a, plus a
 # small fixed allowance for the Python between the measured passes.
 SUM_TOLERANCE = 0.10
 SUM_ALLOWANCE_MS = 3.0
@@ -90,6 +91,7 @@ RECORD_COLUMNS = (
     "t_v_ms",
     "t_i_ms",
     "t_m_ms",
+    "t_s_ms",
     "t_o_ms",
     "c_g",
     "c_v",

@@ -38,7 +38,7 @@ VERSION = 1
 SUFFIX = ".sward"
 # the light a project keeps (the fog distance is its own entry; sky and soil are fixed)
 LIGHT = "sun_elevation sun_azimuth sun_color ambient_color".split()
-LIGHT += ["translucency", "blade_ao_impact", "blade_ao_height"]
+LIGHT += ["translucency", "blade_ao_impact", "blade_ao_height", "blade_shadows", "shadow_strength"]
 
 MAX_FILE_BYTES = 4 << 30
 MAX_JSON_BYTES = 16 << 20
@@ -102,7 +102,8 @@ def _light_from(data: dict, fog_distance: float) -> Lighting:
     if unknown:
         raise ValueError(f"unknown light setting {sorted(unknown)[0]!r}")
     values: dict[str, Any] = {
-        k: tuple(v) if isinstance(v, list | tuple) else float(v) for k, v in data.items()
+        k: tuple(v) if isinstance(v, list | tuple) else v if isinstance(v, bool) else float(v)
+        for k, v in data.items()
     }
     return Lighting(**values, fog_distance=fog_distance)
 

@@ -117,6 +117,8 @@ class Light(msgspec.Struct, forbid_unknown_fields=True):
     translucency: Unit = 0.35
     blade_ao_impact: Unit = 0.6
     blade_ao_height: Annotated[float, Meta(gt=0.0, le=100.0)] = 0.3
+    blade_shadows: bool = False
+    shadow_strength: Unit = 0.6
 
 
 class Wind(msgspec.Struct, forbid_unknown_fields=True):

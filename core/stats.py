@@ -9,7 +9,7 @@ from dataclasses import asdict, dataclass, field
 class FrameStats:
     """t_a whole frame; t_q LOD selection on the CPU (the quadtree traversal, the bare-cell
     filter, core/draw_list.py); t_u the instance uploads of what was selected; t_g / t_v / t_i geometry, volume and image-based grass; t_m the rest of the
-    scenery (ground, props); t_o clearing and resolving the multisampled image. c_* are
+    scenery (ground, props); t_s the blades' shadows on the ground (when the light casts them); t_o clearing and resolving the multisampled image. c_* are
     instance counts."""
 
     t_a_ms: float = 0.0
@@ -19,6 +19,7 @@ class FrameStats:
     t_v_ms: float = 0.0
     t_i_ms: float = 0.0
     t_m_ms: float = 0.0
+    t_s_ms: float = 0.0
     t_o_ms: float = 0.0
     c_g: int = 0
     c_v: int = 0
@@ -74,6 +75,7 @@ class FrameStats:
             + self.t_v_ms
             + self.t_i_ms
             + self.t_m_ms
+            + self.t_s_ms
             + self.t_o_ms
         )
 

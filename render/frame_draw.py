@@ -14,6 +14,7 @@ import numpy as np
 
 from core.stats import FrameStats
 from core.wind import MAX_LEAN
+from render.shadows import draw_blade_shadows, ground_shadows
 from render.uniforms import FrameUniforms
 from render.volume_order import DEPTH_BANDS, beneath_heights, distance_bands, stacked_parts
 
@@ -58,10 +59,15 @@ def draw_view(
     for representation, renderer in passes:
         _check_abort(p)
         stats.add_time(representation, timed(lambda r=renderer: run_passes(r, frame)))
+    # what the ground beyond the blades loses of the sun to their shadows (render/shadows.py)
+    p.ground.shadows = ground_shadows(p, frame, cells)
     # The ground and the props after the blades and the image-based grass, whose samples are
     # opaque where they cover (alpha to coverage, no blending): the ground's fragments behind
     # them fail the depth test before they are shaded. Before the volume, which blends over it.
     stats.t_m_ms += timed(lambda: (p.ground.draw(frame, p.map_textures), p.props.draw(frame)))
+    # the blades' shadows over the ground, behind the blades (the depth test drops those early)
+    if p.ground.shadows is not None:
+        stats.t_s_ms += timed(lambda: draw_blade_shadows(p, frame, drawn))
     count = DEPTH_BANDS if len(volumes) > 1 else 1
     for row in distance_bands([r.distances for r, _ in volumes], count):
         for (renderer, band), part in zip(volumes, row, strict=True):

@@ -138,8 +138,9 @@ class GeometryRenderer(InstancedRenderer):
         )
 
     # -- the three passes --------------------------------------------------------------------
-    def prepare(self, frame: FrameUniforms) -> None:
-        self.use_program(load_program(self.ctx, self.file, frame.defines))
+    def prepare(self, frame: FrameUniforms, defines: tuple[str, ...] = ()) -> None:
+        """`defines` on top of the frame's: SHADOW draws the blades' shadows (render/shadows.py)."""
+        self.use_program(load_program(self.ctx, self.file, frame.defines + defines))
         frame.apply(self.program, self.technique_color)
         if reads(self.program, "u_density_channel"):
             self.program["u_density_channel"].value = self.density_channel
@@ -176,6 +177,19 @@ class GeometryRenderer(InstancedRenderer):
                 self.program["u_segment_level"].value = float(k)
                 self.program["u_segment_scale"].value = self._scale if slides else 0.0
             self.vao.render_indirect(self._commands, moderngl.TRIANGLES, count=1, first=j)
+
+    def draw_coarsest(self) -> None:
+        """Every instance at the last segment level, one segment a blade (the blades' shadows,
+        render/shadows.py: an outline on the ground needs no more)."""
+        if self.vao is None or not self._ranges:
+            return
+        last = len(self._levels) - 1
+        if reads(self.program, "u_segment_level"):
+            self.program["u_segment_level"].value = float(last)
+            self.program["u_segment_scale"].value = 0.0
+        first, count = self._levels[last]
+        total = sum(n for _k, _a, n, _m in self._ranges)
+        self.vao.render(moderngl.TRIANGLES, vertices=count, first=first, instances=total)
 
     def finalize(self) -> None:
         """Nothing to undo: the shader sets the samples its fragments cover."""

@@ -3,13 +3,22 @@ uneven terrain, a grid over the grassed cells that follows the height map (6.4.4
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import moderngl
 import numpy as np
 
 from core.ground_mesh import GROUND_CHUNKS, chunked_mesh
+from core.lighting import Lighting
+from core.shadows import SAMPLES
 from render.design_maps import DesignMapTextures
 from render.shaders import load_program
 from render.uniforms import SINK_UNIT, FrameUniforms
+
+if TYPE_CHECKING:
+    from render.shadows import GroundShadows
+
+MAX_TYPES = 4  # grass types whose shadows the ground takes (render/shadows.py)
 
 
 def chunk_levels(
@@ -60,6 +69,9 @@ class GroundRenderer:
         self.grass_rect = (0.0, 0.0, 0.0, 0.0)
         # the soil under the grass, shaded by it (diagnostics draw it black to see the grass)
         self.under_grass = tuple(0.55 * c for c in (0.30, 0.30, 0.12))
+        # where no blades cast shadows, what they would take (render/shadows.py); None: off
+        self.shadows: GroundShadows | None = None
+        self._shadow_table: moderngl.Texture | None = None
 
     def _mesh(self, quads: tuple[int, int]) -> tuple[moderngl.VertexArray, np.ndarray]:
         if quads not in self.meshes:
@@ -117,25 +129,37 @@ class GroundRenderer:
                 total = int(firsts[last] + counts[last] - firsts[first])
                 vao.render(moderngl.TRIANGLES, vertices=total, first=int(firsts[first]))
 
+    def soil_uniforms(self, light: Lighting) -> dict:
+        """shaders/_soil.glsl's uniforms: the ground's colour here and under blade shadows."""
+        return {
+            "u_soil_color": light.soil_color,
+            "u_under_grass": self.under_grass,
+            "u_fog_color": light.sky_color,
+            "u_fog_distance": light.fog_distance,
+            "u_grass_rect": self.grass_rect,
+        }
+
     def draw(self, frame: FrameUniforms, maps: DesignMapTextures | None = None) -> None:
         """The plane, and on uneven ground (with `maps`) the grid over the grassed cells, each
         vertex sunk so that the grid lies under the ground the grass stands on."""
-        self.program = load_program(
-            self.ctx, "ground.glsl", ("LIGHT_MAPS",) if frame.light_maps else ()
-        )
+        defines = ("LIGHT_MAPS",) if frame.light_maps else ()
+        defines += ("SHADOWS",) if self.shadows is not None else ()
+        self.program = load_program(self.ctx, "ground.glsl", defines)
         if self.program not in self._plane:
             self._plane[self.program] = self.ctx.vertex_array(
                 self.program, [(self.vbo, "2f", "in_corner")]
             )
         frame.apply(self.program)
-        light = frame.light
         p = self.program
         p["u_extent"].value = self.extent
-        p["u_soil_color"].value = light.soil_color
-        p["u_under_grass"].value = self.under_grass
-        p["u_fog_color"].value = light.sky_color
-        p["u_fog_distance"].value = light.fog_distance
-        p["u_grass_rect"].value = self.grass_rect
+        for name, value in self.soil_uniforms(frame.light).items():
+            p[name].value = value
+        if self.shadows is not None:
+            if self._shadow_table is None:
+                size = (SAMPLES * MAX_TYPES, SAMPLES)
+                self._shadow_table = self.ctx.texture(size, 1, dtype="f4")
+                self._shadow_table.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            self.shadows.apply(p, self._shadow_table)
         self.ctx.enable(moderngl.DEPTH_TEST)
         # pushed back a little in depth: grass lying on it (the image-based quads, the volume's
         # floor) must win over the soil even far away, where depth precision is coarse
@@ -151,6 +175,8 @@ class GroundRenderer:
 
     def release(self) -> None:
         self._release_mesh()
+        if self._shadow_table is not None:
+            self._shadow_table.release()
         for vao in self._plane.values():
             vao.release()
         self.vbo.release()

@@ -65,8 +65,10 @@ flat out vec3 v_side;
 #endif
 
 void main() {
-#ifdef CAPTURE
+#if defined CAPTURE
     uint salt = uint(gl_VertexID);
+#elif defined SHADOW
+    uint salt = 0u;  // the cell's alone: its blades' shadows take the same samples
 #else
     // the blade's own (its vertices' rows), so a blade keeps its samples at every segment level
     uint salt = uint(gl_VertexID) / uint(2.0 * u_subdivisions + 2.0);
@@ -99,7 +101,8 @@ void main() {
     }
     // the maps change slowly across a cell: sampled per vertex, not per fragment
     vec2 duv = design_uv(in_config, local.xz);
-#ifdef CAPTURE
+#if defined CAPTURE || defined SHADOW
+    // the capture records the bare patch; a shadow has the ground's colour, not the blade's
     v_map_color = vec4(0.0); v_ambient = vec3(1.0); v_diffuse = vec3(1.0);
 #else
     v_map_color = design_color(duv); v_ambient = design_ambient(duv); v_diffuse = design_diffuse(duv);
@@ -137,6 +140,17 @@ void main() {
     vec3 world = (vec3(in_origin.x, 0.0, in_origin.y) + local) * u_cell_size;
 #ifndef CAPTURE
     world.y += ground_height(design_uv(in_config, root));  // eq. 6.13: the root's height
+#endif
+#ifdef SHADOW
+    // its shadow (core/shadows.py): along the sun onto the ground's plane at the root, the sun
+    // no lower than 5° (a lower one casts shadows as long as that)
+    vec2 foot_uv = design_uv(in_config, root);
+    vec3 foot = vec3((in_origin.x + root.x) * u_cell_size, ground_height(foot_uv),
+                     (in_origin.y + root.y) * u_cell_size);
+    vec3 up = u_height_scale > 0.0 ? ground_normal(foot_uv, in_config.zw / u_cell_size)
+                                   : vec3(0.0, 1.0, 0.0);
+    vec3 sun = normalize(vec3(u_light_dir.x, max(u_light_dir.y, 0.0872), u_light_dir.z));
+    world -= sun * (dot(world - foot, up) / max(dot(sun, up), 0.0872));
 #endif
     v_height = local.y * u_cell_size;
     v_world = world;

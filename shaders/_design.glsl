@@ -49,6 +49,17 @@ vec4 design_color_at(vec2 uv, vec2 dx, vec2 dy) {
 uniform float u_height_scale;
 float ground_height(vec2 uv) { return u_height_scale * textureLod(u_design, vec3(uv, 4.0), 0.0).r; }
 
+// The ground's normal at a design-map uv, `per_unit` the uv's change per world unit (a cell's
+// config.zw over the cell size): from the height map's slope over a texel either side.
+vec3 ground_normal(vec2 uv, vec2 per_unit) {
+    vec2 texel = 1.0 / vec2(textureSize(u_design, 0).xy);
+    vec2 rise = vec2(
+        ground_height(uv + vec2(texel.x, 0.0)) - ground_height(uv - vec2(texel.x, 0.0)),
+        ground_height(uv + vec2(0.0, texel.y)) - ground_height(uv - vec2(0.0, texel.y)));
+    vec2 gradient = rise * per_unit / (2.0 * texel);
+    return normalize(vec3(-gradient.x, 1.0, -gradient.y));
+}
+
 // C = A_c · C_c + (1 − A_c) · M_b · C_b (eq. 6.8): the blade's modulated colour blended with the
 // colour-modulation map by the map's alpha.
 vec3 modulate(vec3 blade, vec4 map) { return mix(blade, map.rgb, map.a); }

@@ -62,6 +62,27 @@ vec3 blade_normal(float t) {
 
 out vec4 f_color;
 
+#if defined SHADOW
+// The blades' shadows (core/shadows.py; Papavasiliou 3.6): the blade's outline moved onto the
+// ground along the sun (_blade_vertex.glsl), in the ground's colour without the sun, covering
+// u_shadow_strength of the pixel's samples. Every blade of a cell has the cell's salt: its
+// shadows pick the same samples, and where they overlap the ground is shadowed once.
+#include "_design.glsl"
+#include "_soil.glsl"
+uniform float u_shadow_strength;
+
+void main() {
+    vec4 tex = texture(u_blade, v_uv);
+    if (tex.a * v_opacity < u_alpha_ref) discard;
+    float cover = u_shadow_strength * v_opacity;
+    if (gl_NumSamples <= 1) {  // no samples to choose from: the pixels themselves (screen door)
+        float xi = float(coverage_hash(uvec3(uvec2(gl_FragCoord.xy), v_salt)) & 0xFFFFu) / 65536.0;
+        if (xi >= cover) discard;
+    }
+    f_color = vec4(soil(v_world, u_eye, 1.0, 0.0), 1.0);
+    gl_SampleMask[0] = coverage_mask(cover, v_salt);
+}
+#else
 void main() {
     vec4 tex = texture(u_blade, v_uv);
     tex.a *= v_opacity;  // blades crossing between LOD representations fade (eq. 5.26)
@@ -73,5 +94,6 @@ void main() {
     f_color = vec4(technique(wind_view(lit, v_lean)), tex.a);
     gl_SampleMask[0] = coverage_mask(tex.a, v_salt);
 }
+#endif
 
 #endif

@@ -35,14 +35,48 @@ void main() {
 }
 
 #elif defined FRAGMENT_SHADER
+#include "_soil.glsl"
 
-uniform vec3 u_soil_color;
 uniform vec3 u_eye;
-uniform vec3 u_fog_color;
-uniform float u_fog_distance;
-uniform vec4 u_grass_rect;    // xmin, zmin, xmax, zmax of the grassed cells
 uniform float u_mesh;
-uniform vec3 u_under_grass;   // soil colour under the grass
+
+// Blade shadows where no blades cast them (core/shadows.py): per grass type (up to four), its
+// density channel, the distances where its geometry level draws blades, (begin, end), and the
+// transitions' (e1, e2) in and out (core/lod.py fades). The geometry there casts the shadows of
+// the blades it keeps, those below w · density; the ground takes away the rest of what all the
+// blades would, 1 − (1 − s·cover(x)) / (1 − s·cover(w·x)) of the sun on average: that ratio is
+// the table, a 17 × 17 block per type side by side, x = density along, w down (render/shadows.py).
+#if defined SHADOWS
+uniform int u_shadow_types;
+uniform sampler2D u_shadow_table;
+uniform vec4 u_shadow_channel[4];  // one-hot: the type's density channel
+uniform vec4 u_shadow_span[4];
+uniform vec4 u_shadow_fade[4];
+uniform float u_shadow_density;  // the document's global density
+
+float geometry_share(int type, float d) {
+    vec4 span = u_shadow_span[type];
+    vec4 fade = u_shadow_fade[type];
+    if (d < span.x || d > span.y) return 0.0;
+    float w = 1.0;
+    if (fade.y > fade.x) w *= clamp((d - fade.x) / (fade.y - fade.x), 0.0, 1.0);
+    if (fade.w > fade.z) w *= 1.0 - clamp((d - fade.z) / (fade.w - fade.z), 0.0, 1.0);
+    return w;
+}
+
+float unshadowed(vec2 uv, float d) {
+    vec4 density = textureLod(u_design, vec3(uv, 0.0), 0.0) * u_shadow_density;
+    float sun = 1.0;
+    for (int t = 0; t < u_shadow_types; ++t) {
+        vec2 at = vec2(clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0), geometry_share(t, d));
+        at = (at * 16.0 + 0.5) / 17.0;
+        sun *= textureLod(u_shadow_table, vec2((float(t) + at.x) / 4.0, at.y), 0.0).r;
+    }
+    return sun;
+}
+#else
+float unshadowed(vec2 uv, float d) { return 1.0; }
+#endif
 
 in vec3 v_world;
 out vec4 f_color;
@@ -51,15 +85,8 @@ void main() {
     vec2 p = v_world.xz;
     float inside = max(u_mesh, step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
                  * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w));
-    // the design maps span the grassed rectangle: bare where the density map is, lit by the maps
-    vec2 uv = (p - u_grass_rect.xy) / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6));
-    float grass = inside * design_density(uv);
-    vec3 albedo = mix(u_soil_color, u_under_grass, grass);
-    vec3 ambient = mix(vec3(1.0), design_ambient(uv), inside);
-    vec3 diffuse = mix(vec3(1.0), design_diffuse(uv), inside);
-    vec3 color = shade(albedo, vec3(0.0, 1.0, 0.0), mix(1.0, 0.6, grass), ambient, diffuse);
-    float fog = 1.0 - exp(-distance(u_eye, v_world) / u_fog_distance);
-    f_color = vec4(mix(color, u_fog_color, clamp(fog, 0.0, 1.0)), 1.0);
+    float sun = inside > 0.0 ? unshadowed(soil_uv(p), distance(u_eye.xz, p)) : 1.0;
+    f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 
 #endif

@@ -126,6 +126,7 @@ def test_profile_prints_the_table_and_the_parts_add_up(tmp_path):
         "t_v",
         "t_i",
         "t_m",
+        "t_s",
         "c_g",
         "c_v",
         "c_i",

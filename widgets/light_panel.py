@@ -1,6 +1,7 @@
 """The light panel (thesis 6.4.3): a sun dial to drag the sun by feel, then sun elevation and
 azimuth, sun and ambient colours, translucency, how dark the dense grass gets at its roots, and
-the fog distance as numbers — a pyqtgraph ParameterTree that shows a Lighting and reports edits
+the fog distance as numbers, and the blades' shadows on the ground (on / off, strength) — a
+pyqtgraph ParameterTree that shows a Lighting and reports edits
 as a new one."""
 
 from __future__ import annotations
@@ -24,8 +25,10 @@ NUMBERS = (
     ("translucency", "Translucency", 0.0, 1.0, 0.05, ""),
     ("blade_ao_impact", "Blade occlusion", 0.0, 1.0, 0.05, ""),
     ("fog_distance", "Fog distance", 10.0, 5000.0, 10.0, "units"),
+    ("shadow_strength", "Shadow strength", 0.0, 1.0, 0.05, ""),
 )
 COLOURS = (("sun_color", "Sun colour"), ("ambient_color", "Ambient colour"))
+FLAGS = (("blade_shadows", "Blade shadows"),)  # on / off: check boxes
 
 
 class LightPanel(QWidget):
@@ -33,32 +36,39 @@ class LightPanel(QWidget):
 
     def __init__(self, light: Lighting, parent=None) -> None:
         super().__init__(parent)
-        children = [
-            {
-                "name": name,
-                "title": title,
-                # typed with or without its unit; a value out of range reaches Lighting, which
-                # refuses it with a message naming the field and its range
-                "type": "unit_float",
-                "decimals": 6,  # 1500 reads "1500", not "1.5e+03"
-                "step": step,
-                "suffix": suffix,
-                "value": getattr(light, name),
-                # a light edit costs the next frame nothing per blade: apply each step at once
-                # (the spin box's default waits 0.3 s for more; consecutive steps merge into
-                # one undo step, app/commands.py)
-                "delay": 0.0,
-            }
-            for name, title, _low, _high, step, suffix in NUMBERS
-        ] + [
-            {
-                "name": name,
-                "title": title,
-                "type": "color",
-                "value": QColor.fromRgbF(*getattr(light, name)),
-            }
-            for name, title in COLOURS
-        ]
+        children = (
+            [
+                {
+                    "name": name,
+                    "title": title,
+                    # typed with or without its unit; a value out of range reaches Lighting, which
+                    # refuses it with a message naming the field and its range
+                    "type": "unit_float",
+                    "decimals": 6,  # 1500 reads "1500", not "1.5e+03"
+                    "step": step,
+                    "suffix": suffix,
+                    "value": getattr(light, name),
+                    # a light edit costs the next frame nothing per blade: apply each step at once
+                    # (the spin box's default waits 0.3 s for more; consecutive steps merge into
+                    # one undo step, app/commands.py)
+                    "delay": 0.0,
+                }
+                for name, title, _low, _high, step, suffix in NUMBERS
+            ]
+            + [
+                {
+                    "name": name,
+                    "title": title,
+                    "type": "color",
+                    "value": QColor.fromRgbF(*getattr(light, name)),
+                }
+                for name, title in COLOURS
+            ]
+            + [
+                {"name": name, "title": title, "type": "bool", "value": getattr(light, name)}
+                for name, title in FLAGS
+            ]
+        )
         self.root = Parameter.create(name="light", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)
         self.tree.setParameters(self.root, showTop=False)
@@ -87,6 +97,8 @@ class LightPanel(QWidget):
                 self.root.child(name).setValue(getattr(light, name))
             for name, _ in COLOURS:
                 self.root.child(name).setValue(QColor.fromRgbF(*getattr(light, name)))
+            for name, _ in FLAGS:
+                self.root.child(name).setValue(getattr(light, name))
         finally:
             self._updating = False
 
@@ -115,6 +127,8 @@ class LightPanel(QWidget):
         for name, _ in COLOURS:
             c = self.root.child(name).value()
             values[name] = (c.redF(), c.greenF(), c.blueF())
+        for name, _ in FLAGS:
+            values[name] = bool(self.root.child(name).value())
         try:
             light = dataclasses.replace(self.light, **values)
         except ValueError as exc:

@@ -33,6 +33,7 @@ PARTS = (
     ("t_i_ms", "image", (70, 120, 255)),
     ("t_q_ms", "LOD selection", (170, 170, 170)),
     ("t_m_ms", "ground, props", (120, 200, 120)),
+    ("t_s_ms", "blade shadows", (90, 70, 60)),
 )
 PLOT_FRAMES = 300
 

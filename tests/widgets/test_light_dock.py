@@ -69,3 +69,30 @@ def test_text_that_is_no_number_in_the_light_dock_gets_a_message(window, qtbot):
     type_into(box, "90")
     qtbot.waitUntil(lambda: window.document.light.sun_azimuth == pytest.approx(90.0))
     assert panel.message.text() == ""
+
+
+def test_blade_shadows_are_switched_on_and_weakened_in_the_light_dock(window, qtbot):
+    """Light dock → Blade shadows: the ground between the blades darkens; Shadow strength
+    weakens it; each is one undo step, and undo brings the unshadowed frame back."""
+    panel = window.light_panel
+    window.light_dock.raise_()
+    window.viewport.set_camera(window.document.camera("top"))
+    before = grab(window).astype(int)
+    steps = window.undo_stack.count()
+    box = field(panel.tree, "blade_shadows")
+    box.setFocus()
+    qtbot.keyClick(box, Qt.Key.Key_Space)  # as a person tabbing to it
+    qtbot.waitUntil(lambda: window.document.light.blade_shadows)
+    shadowed = grab(window).astype(int)
+    darker = (before - shadowed).sum(axis=-1)
+    assert (darker > 30).mean() > 0.01 and (darker < -30).mean() < 0.2 * (darker > 30).mean()
+    type_into(field(panel.tree, "shadow_strength"), "0.2")
+    qtbot.waitUntil(lambda: window.document.light.shadow_strength == pytest.approx(0.2))
+    weaker = grab(window).astype(int)
+    assert (before - weaker).sum() < 0.6 * darker.sum()
+    assert window.undo_stack.count() == steps + 2
+    window.undo_stack.undo()
+    window.undo_stack.undo()
+    assert not window.document.light.blade_shadows
+    assert not field(panel.tree, "blade_shadows").isChecked()
+    assert np.abs(grab(window).astype(int) - before).max() <= 2

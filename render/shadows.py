@@ -1,0 +1,133 @@
+"""Blade shadows on the ground (core/shadows.py, Papavasiliou 3.6): the blades of the geometry
+level drawn a second time onto the ground along the sun (shaders/geometry.glsl, SHADOW), and
+the ground beyond them darkened by what the blades' shadows take there on average
+(shaders/ground.glsl, SHADOWS), each grass type's share of shadowed ground measured from its
+patch for the sun of the frame."""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import moderngl
+import numpy as np
+
+from core.lod import NO_FADE
+from core.patch import GrassPatch
+from core.shadows import SAMPLES, cover
+from render.ground import MAX_TYPES
+from render.shaders import reads
+from render.uniforms import SHADOW_UNIT
+
+if TYPE_CHECKING:
+    from render.frame import FramePipeline
+    from render.uniforms import FrameUniforms
+
+# per patch, the last few suns' cover (a drag of the sun dial asks for one after another)
+_covers: weakref.WeakKeyDictionary[GrassPatch, dict] = weakref.WeakKeyDictionary()
+
+
+def patch_cover(patch: GrassPatch, sun: np.ndarray, mirrored: bool) -> np.ndarray:
+    """core/shadows.py cover, kept for the patch and sun."""
+    kept = _covers.setdefault(patch, {})
+    key = (tuple(round(float(v), 6) for v in sun), mirrored)
+    if key not in kept:
+        if len(kept) >= 8:
+            kept.pop(next(iter(kept)))
+        kept[key] = cover(patch, sun, mirrored)
+    return kept[key]
+
+
+@dataclass(frozen=True)
+class GroundShadows:
+    """shaders/ground.glsl's SHADOWS uniforms for one view."""
+
+    cover: np.ndarray  # (types, SAMPLES)
+    channels: tuple[int, ...]
+    spans: tuple[tuple[float, float], ...]  # where each type's geometry draws blades
+    fades: tuple[tuple[float, float, float, float], ...]
+    strength: float
+    density: float
+
+    def apply(self, program: moderngl.Program, table: moderngl.Texture) -> None:
+        """Set the uniforms; `table` (MAX_TYPES · SAMPLES × SAMPLES, one float) takes the
+        share of the sun the ground keeps."""
+        n = len(self.channels)
+        blocks = np.ones((SAMPLES, MAX_TYPES, SAMPLES), np.float32)
+        for t in range(n):
+            blocks[:, t] = kept_sun(self.cover[t], self.strength)
+        table.write(blocks.tobytes())
+        table.use(SHADOW_UNIT)
+        spans = [(a, min(b, 1e30), 0.0, 0.0) for a, b in self.spans]
+        spans += [(1.0, 0.0, 0.0, 0.0)] * (MAX_TYPES - n)  # none: no blades anywhere
+        fades = list(self.fades) + [NO_FADE] * (MAX_TYPES - n)
+        values = {
+            "u_shadow_types": n,
+            "u_shadow_table": SHADOW_UNIT,
+            "u_shadow_channel": np.eye(4, dtype=np.float32)[
+                (list(self.channels) + [0] * 4)[:4]
+            ].tobytes(),
+            "u_shadow_span": np.array(spans, np.float32).tobytes(),
+            "u_shadow_fade": np.array(fades, np.float32).tobytes(),
+            "u_shadow_density": self.density,
+        }
+        for name, value in values.items():
+            if not reads(program, name):
+                continue
+            if isinstance(value, bytes):
+                program[name].write(value)
+            else:
+                program[name].value = value
+
+
+def kept_sun(cover: np.ndarray, strength: float) -> np.ndarray:
+    """(w, x) on the 0 … 1 grid of `cover`: the share of the sun the ground keeps at density x
+    where the geometry casts the shadows of the blades below w · x, (1 − s·cover(x)) /
+    (1 − s·cover(w·x)): all the blades' shadows, on average, with the geometry's."""
+    x = np.linspace(0.0, 1.0, len(cover))
+    everything = 1.0 - strength * cover
+    cast = 1.0 - strength * np.interp(x[:, None] * x[None, :], x, cover)
+    return everything[None, :] / np.maximum(cast, 1e-3)
+
+
+def ground_shadows(p: FramePipeline, frame: FrameUniforms, cells: list) -> GroundShadows | None:
+    """What the ground needs to darken where no blades cast shadows, or None: shadows off."""
+    light = frame.light
+    if not light.blade_shadows:
+        return None
+    sun = light.sun_direction
+    covers, channels, spans, fades = [], [], [], []
+    for grass, view in list(zip(p.grass_types, cells, strict=True))[:MAX_TYPES]:
+        patch = grass.patch
+        if patch is None:
+            continue
+        covers.append(patch_cover(patch, sun, frame.tiling))
+        channels.append(grass.density_channel)
+        spans.append(view.blades if view.blades is not None else (1.0, 0.0))
+        fades.append(view.fades.get(("geometry", 0), NO_FADE))
+    if not covers:
+        return None
+    return GroundShadows(
+        np.array(covers), tuple(channels), tuple(spans), tuple(fades), light.shadow_strength,
+        float(p.density),
+    )  # fmt: skip
+
+
+def draw_blade_shadows(p: FramePipeline, frame: FrameUniforms, drawn: list) -> None:
+    """Each grass type's blades of this view again, as their shadows on the ground: drawn
+    over it (pushed back in depth, render/ground.py) without writing depth, so that the volume
+    after them still meets the ground's."""
+    soil = p.ground.soil_uniforms(frame.light)
+    p.ctx.fbo.depth_mask = False
+    for grass, batches in zip(p.grass_types, drawn, strict=True):
+        if ("geometry", 0) not in batches or grass.geometry.vao is None:
+            continue
+        renderer = grass.geometry
+        renderer.prepare(frame, ("SHADOW",))
+        for name, value in soil.items():
+            renderer.program[name].value = value
+        renderer.program["u_shadow_strength"].value = frame.light.shadow_strength
+        renderer.draw_coarsest()
+        renderer.finalize()
+    p.ctx.fbo.depth_mask = True

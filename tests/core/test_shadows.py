@@ -1,0 +1,70 @@
+"""Blade shadows in core: the share of a cell's ground the blades' shadows cover, measured
+from the patch (core/shadows.py), and the light's shadow settings."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from core.lighting import Lighting
+from core.params import PRESETS
+from core.patch import generate_patch
+from core.shadows import _outlines, cover
+
+
+def _sun(elevation: float, azimuth: float = 135.0) -> np.ndarray:
+    return Lighting(sun_elevation=elevation, sun_azimuth=azimuth).sun_direction
+
+
+def _shoelace(points: np.ndarray) -> float:
+    x, y = points[:, 0], points[:, 1]
+    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
+@pytest.mark.parametrize("elevation", [25.0, 50.0, 75.0])
+def test_one_blades_shadow_covers_the_area_of_its_outline_along_the_sun(elevation):
+    """A patch of one blade: what its shadow covers is the area of its outline moved along the
+    sun onto the ground (the shoelace formula), within the raster's resolution."""
+    params = PRESETS[sorted(PRESETS)[0]].replace(blade_count=1, tilt_min=0.0, tilt_max=0.0)
+    patch = generate_patch(params)
+    sun = _sun(elevation)
+    outline, _ = _outlines(patch)
+    ground = outline[0][:, [0, 2]] - outline[0][:, 1:2] * sun[[0, 2]] / sun[1]
+    area = _shoelace(ground)
+    got = cover(patch, sun, mirrored=False, raster=1024)
+    assert got[0] == 0.0 and got[-1] == pytest.approx(area, rel=0.08)
+
+
+def test_the_lower_the_sun_the_more_ground_lies_in_shadow_and_density_adds_to_it():
+    patch = generate_patch(PRESETS[sorted(PRESETS)[0]].replace(blade_count=400))
+    low, high = cover(patch, _sun(20.0)), cover(patch, _sun(70.0))
+    assert np.all(np.diff(low) >= 0) and np.all(np.diff(high) >= 0)  # more blades, more shadow
+    assert low[0] == 0.0 and 0.0 < high[-1] < low[-1] <= 1.0
+    # a sun that has set casts shadows as long as one 5° above the horizon
+    assert np.allclose(cover(patch, _sun(-5.0)), cover(patch, _sun(5.0)), atol=0.02)
+
+
+def test_the_shadows_union_is_no_more_than_the_sum_of_the_blades():
+    """Overlapping shadows count once: the share for all blades is below the sum of each
+    half's share."""
+    patch = generate_patch(PRESETS[sorted(PRESETS)[0]].replace(blade_count=800))
+    c = cover(patch, _sun(30.0))
+    half = c[len(c) // 2]  # the blades below threshold ½: about half of them
+    assert c[-1] < 2.0 * half
+
+
+def test_the_light_keeps_its_shadow_settings_and_refuses_bad_ones(tmp_path):
+    from app.scenes import get_scene
+    from core.project_file import load_project, save_project
+
+    doc = get_scene("patch-grid").document()
+    assert not doc.light.blade_shadows  # off unless asked for
+    doc.light = dataclasses.replace(doc.light, blade_shadows=True, shadow_strength=0.35)
+    save_project(tmp_path / "lit.sward", doc)
+    light = load_project(tmp_path / "lit.sward").light
+    assert light.blade_shadows is True and math.isclose(light.shadow_strength, 0.35)
+    with pytest.raises(ValueError, match="shadow_strength"):
+        Lighting(shadow_strength=1.5)
+    with pytest.raises(ValueError, match="blade_shadows"):
+        Lighting(blade_shadows=1.0)

@@ -1,0 +1,104 @@
+"""Blade shadows (core/shadows.py): the blades darken the ground on the side away from the sun;
+the ground beyond the blades loses what their shadows would take, so the shadow does not end
+where the geometry does."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from app.scenes import get_scene
+from core.camera import Camera
+
+SIZE = (480, 270)
+
+
+def _lit(doc, on: bool, strength: float = 0.6):
+    doc.light = dataclasses.replace(doc.light, blade_shadows=on, shadow_strength=strength)
+
+
+def _pixel(camera, size, point) -> tuple[int, int]:
+    w, h = size
+    clip = camera.projection(w / h) @ camera.view() @ np.append(point, 1.0)
+    x, y = clip[:2] / clip[3]
+    return int((x * 0.5 + 0.5) * w), int((0.5 - y * 0.5) * h)
+
+
+def test_a_tuft_darkens_the_ground_away_from_the_sun_and_not_the_sky(headless):
+    doc = get_scene("patch-grid").document()
+    w, h = doc.maps.size
+    v, u = np.mgrid[0:h, 0:w]
+    centre = np.array([w / 2, h / 2])
+    tuft = ((u - centre[0]) ** 2 + (v - centre[1]) ** 2) < (w / 24) ** 2
+    doc.maps.write("density", 0, 0, np.repeat(tuft[..., None], 4, axis=2).astype(np.float32))
+    terrain = doc.terrain_spec
+    x0, z0, x1, z1 = doc.terrain.rect
+    middle = np.array([(x0 + x1) / 2, 0.0, (z0 + z1) / 2])  # the tuft's centre
+    camera = Camera(target=tuple(middle), yaw=0.0, pitch=89.0, distance=3.0)  # from above
+    renderer = headless(doc)
+    _lit(doc, False)
+    before = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+    _lit(doc, True)
+    after, stats = renderer.render(camera, SIZE, measure=True)
+    darker = (before - after.astype(float)).mean(axis=-1)
+    sun = doc.light.sun_direction
+    way = sun[[0, 2]] / np.linalg.norm(sun[[0, 2]])
+    reach = terrain.columns / 24 + 0.12  # just past the tuft's edge
+    for side, sign in (("away from the sun", -1.0), ("towards the sun", 1.0)):
+        x, y = _pixel(camera, SIZE, middle + sign * reach * np.array([way[0], 0.0, way[1]]))
+        window = darker[y - 4 : y + 5, x - 4 : x + 5]
+        if sign < 0:
+            assert window.mean() > 6.0, f"{side}: {window.mean():.2f}"
+        else:
+            assert abs(window.mean()) < 1.0, f"{side}: {window.mean():.2f}"
+    # seen along the ground, the sky stays as it was
+    grazing = doc.camera("grazing")
+    sky_frames = []
+    for on in (False, True):
+        _lit(doc, on)
+        sky_frames.append(renderer.render(grazing, SIZE, measure=False)[0].astype(float))
+    sky = (sky_frames[0][..., 2] > sky_frames[0][..., 1]) & (sky_frames[0][..., 2] > 150)
+    assert sky.sum() > 5000 and np.array_equal(sky_frames[0][sky], sky_frames[1][sky])
+    assert stats.t_s_ms > 0.0
+
+
+@pytest.mark.parametrize("scene,camera", [("bench", "zones"), ("meadow", "path")])
+def test_the_shadows_mean_darkening_goes_on_past_the_blades(headless, scene, camera):
+    """Sparse grass, the ground showing between the blades: on either side of the hand-over
+    from the blades to the volume, the rows of the LOD frame darken by what they darken in the
+    all-geometry frame, where every blade casts its shadow (within a fifth); the ground beyond
+    the blades keeping its sun would leave the volume's rows undarkened."""
+    from core.quality import technique_regions
+    from render.grass_type import technique_colors
+
+    def darkening(doc, mode, cam):
+        renderer = headless(doc, mode=mode)
+        _lit(doc, False)
+        off = renderer.render(cam, SIZE, measure=False)[0].astype(float)
+        _lit(doc, True)
+        on = renderer.render(cam, SIZE, measure=False)[0].astype(float)
+        return (off - on).mean(axis=-1).mean(axis=1), renderer
+
+    doc = get_scene(scene).document()
+    doc.density = 0.3
+    cam = doc.camera(camera)
+    lod, renderer = darkening(doc, "lod", cam)
+    renderer.pipeline.view = "techniques"
+    techniques = renderer.render(cam, SIZE, measure=False)[0]
+    renderer.pipeline.view = "shaded"
+    shaded = renderer.render(cam, SIZE, measure=False)[0]
+    regions = technique_regions(shaded, techniques, technique_colors())
+    blade_rows = regions["geometry"].mean(axis=1)
+    volume_rows = regions["volume"].mean(axis=1)
+    # the hand-over: from the rows of volume nearest the blades to the rows the blades hold
+    first = int(np.flatnonzero(blade_rows > 0.2)[0])
+    band = np.arange(max(first - 30, 0), min(first + 30, SIZE[1]))
+    geometry, _ = darkening(doc, "geometry", cam)
+    for side, rows in (
+        ("volume", band[volume_rows[band] > 0.5]),
+        ("blades", band[blade_rows[band] > 0.2]),
+    ):
+        assert rows.size > 10, side
+        want, got = geometry[rows].mean(), lod[rows].mean()
+        assert want > 1.0, f"{scene} {side}: the shadows darken the rows by {want:.2f} only"
+        assert abs(got - want) < 0.2 * want, f"{scene} {side}: {got:.2f} against {want:.2f}"
