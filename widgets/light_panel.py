@@ -36,39 +36,39 @@ class LightPanel(QWidget):
 
     def __init__(self, light: Lighting, parent=None) -> None:
         super().__init__(parent)
-        children = (
-            [
-                {
-                    "name": name,
-                    "title": title,
-                    # typed with or without its unit; a value out of range reaches Lighting, which
-                    # refuses it with a message naming the field and its range
-                    "type": "unit_float",
-                    "decimals": 6,  # 1500 reads "1500", not "1.5e+03"
-                    "step": step,
-                    "suffix": suffix,
-                    "value": getattr(light, name),
-                    # a light edit costs the next frame nothing per blade: apply each step at once
-                    # (the spin box's default waits 0.3 s for more; consecutive steps merge into
-                    # one undo step, app/commands.py)
-                    "delay": 0.0,
-                }
-                for name, title, _low, _high, step, suffix in NUMBERS
-            ]
-            + [
-                {
-                    "name": name,
-                    "title": title,
-                    "type": "color",
-                    "value": QColor.fromRgbF(*getattr(light, name)),
-                }
-                for name, title in COLOURS
-            ]
-            + [
-                {"name": name, "title": title, "type": "bool", "value": getattr(light, name)}
-                for name, title in FLAGS
-            ]
-        )
+        numbers = [
+            {
+                "name": name,
+                "title": title,
+                # typed with or without its unit; a value out of range reaches Lighting, which
+                # refuses it with a message naming the field and its range
+                "type": "unit_float",
+                "decimals": 6,  # 1500 reads "1500", not "1.5e+03"
+                "step": step,
+                "suffix": suffix,
+                "value": getattr(light, name),
+                # a light edit costs the next frame nothing per blade: apply each step at once
+                # (the spin box's default waits 0.3 s for more; consecutive steps merge into
+                # one undo step, app/commands.py)
+                "delay": 0.0,
+            }
+            for name, title, _low, _high, step, suffix in NUMBERS
+        ]
+        colours = [
+            {
+                "name": name,
+                "title": title,
+                "type": "color",
+                "value": QColor.fromRgbF(*getattr(light, name)),
+            }
+            for name, title in COLOURS
+        ]
+        flags = [
+            {"name": name, "title": title, "type": "bool", "value": getattr(light, name)}
+            for name, title in FLAGS
+        ]
+        # the blades' shadows together at the end: the switch, then its strength (NUMBERS' last)
+        children = numbers[:-1] + colours + flags + numbers[-1:]
         self.root = Parameter.create(name="light", type="group", children=children)
         self.tree = ParameterTree(showHeader=False)
         self.tree.setParameters(self.root, showTop=False)
