@@ -5,6 +5,7 @@ thresholds, curves) and its parameters from settings.json, the instances (which 
 bits) from EXT_mesh_gpu_instancing. A mesh attribute or a placement lost on the way shows here
 as a picture that differs."""
 
+import dataclasses
 import json
 
 import numpy as np
@@ -75,7 +76,9 @@ def _from_export(folder, document):
 def test_the_meadow_drawn_from_its_export_matches_all_geometry(headless, tmp_path):
     document = get_scene("meadow").document()
     export(document, tmp_path, ("patch", "instances", "lod"))
-    camera = document.camera()
+    # the nearest 900 cells (two grass types, mirror bits, hills): every instance of the file
+    # drawn where it stands; the whole meadow as blades took a minute a frame on llvmpipe
+    camera = dataclasses.replace(document.camera(), far=18.0)
     renderer = headless(document, mode="geometry")
     renderer.pipeline.segment_lod = False  # the file holds whole strips: an engine's LOD is its own
     direct, _ = renderer.render(camera, SIZE, measure=False)
@@ -98,5 +101,5 @@ def test_the_meadow_drawn_from_its_export_matches_all_geometry(headless, tmp_pat
     assert loaded[0][1].dtype == INSTANCE_DTYPE and all(i.size for _, i in loaded)
     from_file, _ = renderer.render(camera, SIZE, measure=False)
     difference, _ = flip(direct, from_file, QUARTER)
-    # 0.0001 against a floor of 0.031 today; without the mirror bits it is 0.037
+    # within the floor of two frames a blade apart; without the file's mirror bits it is not
     assert difference <= floor, (difference, floor)
