@@ -65,7 +65,7 @@ def draw_view(
     # opaque where they cover (alpha to coverage, no blending): the ground's fragments behind
     # them fail the depth test before they are shaded. Before the volume, which blends over it.
     stats.t_m_ms += timed(lambda: (p.ground.draw(frame, p.map_textures), p.props.draw(frame)))
-    # the blades' shadows over the ground, behind the blades (the depth test drops those early)
+    # the blades' shadows over the ground, hidden behind the blades by the depth test
     if p.ground.shadows is not None:
         stats.t_s_ms += timed(lambda: draw_blade_shadows(p, frame, drawn))
     count = DEPTH_BANDS if len(volumes) > 1 else 1

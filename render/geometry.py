@@ -100,6 +100,8 @@ class GeometryRenderer(InstancedRenderer):
             eye, pixel, lean, draft, tolerance = self.view
             s = self.patch.params.subdivisions
             if lean not in self._curvature:
+                if len(self._curvature) >= 8:  # leans come and go with the wind's settings
+                    self._curvature.clear()
                 v = self.patch.vertices
                 self._curvature[lean] = segments.curvature(v["ctrl1"], v["ctrl2"], lean)
             g = self._curvature[lean]
