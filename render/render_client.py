@@ -30,6 +30,8 @@ from render.derived_cache import SHARED_DIR_ENV
 from render.mapped import MappedArray
 from render.process_start import FULL, ROLES
 
+QUIT_WAIT_S = 1.0  # how long closing waits for the render processes to quit before killing
+
 
 def _shared_folder() -> str:
     return "/dev/shm" if os.path.isdir("/dev/shm") else tempfile.gettempdir()
@@ -311,9 +313,13 @@ class RenderClient:
         for p in self.processes.values():
             with contextlib.suppress(BrokenPipeError, OSError):
                 p.conn.send(msg.Quit())
+        # a process in the middle of a long frame or light table is killed after a second:
+        # it holds nothing of the document's (its derived files are written whole or not at
+        # all), and the window closes without waiting for it
+        deadline = monotonic() + QUIT_WAIT_S
         for p in self.processes.values():
             try:
-                p.process.wait(timeout=5)
+                p.process.wait(timeout=max(deadline - monotonic(), 0.0))
             except subprocess.TimeoutExpired:
                 p.process.kill()
                 p.process.wait(timeout=5)
