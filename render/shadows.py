@@ -17,8 +17,7 @@ from core.lod import NO_FADE
 from core.patch import GrassPatch
 from core.shadows import SAMPLES, cover
 from render.ground import MAX_TYPES
-from render.shaders import reads
-from render.uniforms import SHADOW_UNIT
+from render.uniforms import SHADOW_UNIT, set_uniforms
 
 if TYPE_CHECKING:
     from render.frame import FramePipeline
@@ -72,13 +71,7 @@ class GroundShadows:
             "u_shadow_fade": np.array(fades, np.float32).tobytes(),
             "u_shadow_density": self.density,
         }
-        for name, value in values.items():
-            if not reads(program, name):
-                continue
-            if isinstance(value, bytes):
-                program[name].write(value)
-            else:
-                program[name].value = value
+        set_uniforms(program, values)
 
 
 def kept_sun(cover: np.ndarray, strength: float) -> np.ndarray:

@@ -80,13 +80,18 @@ class FrameUniforms:
             "u_wind_view": 1.0 if self.wind_view else 0.0,
             **wind_uniforms(self.wind, self.time),
         }
-        for name, value in values.items():
-            if not reads(program, name):
-                continue
-            if isinstance(value, bytes):
-                program[name].write(value)
-            else:
-                program[name].value = value
+        set_uniforms(program, values)
+
+
+def set_uniforms(program: moderngl.Program, values: dict[str, object]) -> None:
+    """Each value the program reads (bytes: written whole, an array or matrix); others skipped."""
+    for name, value in values.items():
+        if not reads(program, name):
+            continue
+        if isinstance(value, bytes):
+            program[name].write(value)
+        else:
+            program[name].value = value
 
 
 def wind_uniforms(wind: Wind, time: float) -> dict[str, object]:
