@@ -12,6 +12,9 @@ from core.heights import hills
 from core.lod import LodConfig
 from core.mipmaps import build_mips_stack, weighted_chain
 from core.occupancy import DensityOccupancy
+from core.params import PatchParams
+from core.patch import generate_patch
+from core.shadows import cover
 from core.slopes import _seen
 from core.terrain import Terrain
 from core.tiling import mirror_bits
@@ -43,6 +46,8 @@ def main() -> None:
     row = np.zeros(3, np.float32)
     through = np.ones((2, 3), np.float32)
     _seen(row[:2], k_m, k_m, k_m, row, row, through, 0.1, 1.0, k_m.copy(), k_m.copy())
+    # the blades' shadow cover (core/shadows.py), with the types the renderer passes
+    cover(generate_patch(PatchParams(blade_count=2)), np.array([0.5, 0.7, 0.5]), False, 2, 8)
     print(f"sward setup: numba kernels compiled in {time.perf_counter() - start:.1f} s")
 
 
