@@ -1,8 +1,11 @@
-"""Blade segments fewer with distance (core/segments.py): the geometry pass with segment LOD
-against every blade drawn with all its segments, at the same camera and size, and the picture
-they make against each other (FLIP at full and at quarter resolution). For scale, the pass
-with every patch made of one-segment blades: what fewer segments can save at most on this
-renderer.
+"""Blade segments fewer with distance (core/segments.py) and each cell's run of blades
+(render/geometry.py): the geometry pass as drawn against every blade of every cell drawn with
+all its segments, at the same camera and size, and the picture they make against each other
+(FLIP at full and at quarter resolution). For scale, the pass with every patch made of
+one-segment blades, every blade drawn: what fewer segments alone can save at most here; and
+the pass as drawn with every fragment discarded before its work (the `volume_cost` suite's
+floor): what rasterising the blades under 4× MSAA costs on this renderer, whatever the
+shaders do.
 
 Run: `sward bench --suite segments --out results.json`.
 """
@@ -17,18 +20,38 @@ SIZE = (960, 540)
 CASES = (("bench", "zones"), ("football", "player"), ("meadow", "default"), ("meadow", "path"))
 
 
-def _times(renderer, camera, runs: int, modes: dict) -> tuple[dict, dict, dict]:
-    """Per mode (name -> segment LOD on): its frame, its triangles and its geometry pass's
-    times, the modes drawn in turns so that each sees the same machine."""
+_FLOOR = "    if (gl_FragCoord.x > -1.0) discard;\n"
+
+
+def _set(renderer, mode: str) -> None:
+    """Segment LOD and the runs of blades on (`lod`, `floor`), or every blade with all its
+    segments; `floor`: the blades' fragments discarded first."""
+    import render.geometry as geometry
+    from benchmarks.volume_cost import _floor_loader
+    from render.shaders import load_program
+
+    on = mode != "full" and mode != "one"
+    renderer.pipeline.segment_lod = on
+    geometry.load_program = _floor_loader(_FLOOR) if mode == "floor" else load_program
+    for grass in renderer.pipeline.grass_types:
+        grass.geometry.spans = geometry.GeometryRenderer.spans if on else 1
+
+
+def _times(renderer, camera, runs: int, modes: tuple) -> tuple[dict, dict, dict]:
+    """Per mode: its frame, its triangles and its geometry pass's times, the modes drawn in
+    turns so that each sees the same machine."""
     images, triangles, times = {}, {}, {mode: [] for mode in modes}
-    for mode, on in modes.items():  # warm: programs, slices, light tables
-        renderer.pipeline.segment_lod = on
-        images[mode], stats = renderer.render(camera, SIZE)
-        triangles[mode] = stats.triangles
-    for _ in range(runs):
-        for mode, on in modes.items():
-            renderer.pipeline.segment_lod = on
-            times[mode].append(renderer.render(camera, SIZE)[1].t_g_ms)
+    try:
+        for mode in modes:  # warm: programs, slices, light tables
+            _set(renderer, mode)
+            images[mode], stats = renderer.render(camera, SIZE)
+            triangles[mode] = stats.triangles
+        for _ in range(runs):
+            for mode in modes:
+                _set(renderer, mode)
+                times[mode].append(renderer.render(camera, SIZE)[1].t_g_ms)
+    finally:
+        _set(renderer, "lod")
     return images, triangles, {mode: statistics.median(t) for mode, t in times.items()}
 
 
@@ -39,12 +62,12 @@ def compare(scene_name: str, camera_name: str, runs: int = 5) -> dict:
     doc = get_scene(scene_name).document()
     camera = doc.camera(camera_name)
     renderer = HeadlessRenderer(doc)
-    images, triangles, ms = _times(renderer, camera, runs, {"lod": True, "full": False})
+    images, triangles, ms = _times(renderer, camera, runs, ("lod", "full", "floor"))
     renderer.release()
     for index, grass in enumerate(doc.grass_types):  # every patch of one-segment blades
         doc.set_params(index, grass.params.replace(subdivisions=1))
     renderer = HeadlessRenderer(doc)
-    _, _, single = _times(renderer, camera, runs, {"one": False})
+    _, _, single = _times(renderer, camera, runs, ("one",))
     renderer.release()
     diff = Comparison.of(images["full"], images["lod"])
     return {
@@ -53,6 +76,7 @@ def compare(scene_name: str, camera_name: str, runs: int = 5) -> dict:
         "full_segments_ms": ms["full"],
         "speedup": ms["full"] / ms["lod"] if ms["lod"] > 0 else 0.0,
         "one_segment_speedup": ms["full"] / single["one"] if single["one"] > 0 else 0.0,
+        "fragment_floor_speedup": ms["full"] / ms["floor"] if ms["floor"] > 0 else 0.0,
         "triangles": triangles["lod"],
         "full_triangles": triangles["full"],
         "flip": diff.flip_full,

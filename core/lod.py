@@ -51,6 +51,20 @@ def opacity(threshold, w, local_density: float, epsilon: float, far: bool):
     return np.where(x <= 1.0, 1.0 - near, 0.0) if far else near
 
 
+def shown_thresholds(density, lod, epsilon: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per cell (`density` its local density, `lod` its (w, far) pair), the thresholds lo … hi
+    outside which `opacity` is 0: the blades a representation can show there. The bounds
+    reach a little beyond the exact ones, for a shader computing in float32."""
+    d = np.asarray(density, dtype=np.float64)
+    lod = np.asarray(lod, dtype=np.float64).reshape(-1, 2)
+    w, far = lod[:, 0], lod[:, 1] >= 0.5
+    epsilon = max(epsilon, 1e-4)
+    near_hi = d * np.clip(w + epsilon, 0.0, 1.0)
+    lo = np.where(far, d * np.clip(w - epsilon, 0.0, 1.0), 0.0)
+    hi = np.where(far, d, near_hi)
+    return lo * (1.0 - 1e-5) - 1e-7, hi * (1.0 + 1e-5) + 1e-7
+
+
 SPREAD_WIDTH = 12.0**0.5  # a uniform distribution's width over its standard deviation
 
 

@@ -48,13 +48,17 @@ def level_rows(subdivisions: int, level: int) -> np.ndarray:
     return np.array(rows)
 
 
-def level_indices(blades: int, subdivisions: int, level: int) -> np.ndarray:
+def level_indices(
+    blades: int, subdivisions: int, level: int, order: np.ndarray | None = None
+) -> np.ndarray:
     """Two triangles per kept segment of each blade's strip, over the same vertices as the full
-    strip ((segment, side) ordered, as core/patch.py lays them out)."""
+    strip ((segment, side) ordered, as core/patch.py lays them out); the blades in `order`
+    (their indices) where given, else as the patch holds them."""
     rows = level_rows(subdivisions, level) * 2
     lo, hi = rows[:-1], rows[1:]
     quad = np.stack([lo, lo + 1, hi, hi, lo + 1, hi + 1], axis=1).reshape(-1)
-    base = (np.arange(blades) * (subdivisions + 1) * 2)[:, None]
+    blade = np.arange(blades) if order is None else np.asarray(order, np.int64)
+    base = (blade * (subdivisions + 1) * 2)[:, None]
     return (base + quad[None, :]).astype(np.uint32).reshape(-1)
 
 

@@ -101,7 +101,7 @@ def _upload(p: FramePipeline, frame: FrameUniforms, cells: list, stats: FrameSta
             if representation == "geometry":
                 blades, _whole = blades_drawn(grass, count)
                 stats.blades += blades
-                stats.triangles += grass.geometry.triangles(blades // max(count, 1))
+                stats.triangles += grass.geometry.triangles()
     return drawn
 
 

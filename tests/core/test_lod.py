@@ -6,7 +6,16 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from core.grid import grid_instances
-from core.lod import HAND_OVER_BAND, LodConfig, LodLevel, classify, opacity, select, weight_near
+from core.lod import (
+    HAND_OVER_BAND,
+    LodConfig,
+    LodLevel,
+    classify,
+    opacity,
+    select,
+    shown_thresholds,
+    weight_near,
+)
 
 
 @given(
@@ -267,3 +276,22 @@ def test_fades_give_each_renderer_its_levels_transitions_as_the_cells_weights_us
         )
     )
     assert fades(twice)[("volume", 4)] == NO_FADE
+
+
+@given(
+    st.floats(0.0, 1.0),
+    st.floats(0.0, 2.0),
+    st.booleans(),
+    st.floats(0.0, 0.2),
+)
+def test_the_blades_a_cell_can_show_lie_between_its_shown_thresholds(density, w, far, epsilon):
+    """The geometry renderer draws each cell only the blades whose thresholds lie in
+    shown_thresholds (render/geometry.py): every blade outside shows nothing, and the run is
+    no wider than the blades that show plus the crossover window."""
+    t = np.linspace(0.0, 1.0, 4001)
+    lo, hi = shown_thresholds(np.array([density]), np.array([[w, float(far)]]), epsilon)
+    shown = opacity(t, w, density, epsilon, far) > 0.0
+    assert not shown[(t < lo[0]) | (t > hi[0])].any()
+    if shown.any():
+        window = 2.0 * max(epsilon, 1e-4) * density + 1e-3
+        assert hi[0] - lo[0] <= t[shown].max() - t[shown].min() + window
