@@ -14,6 +14,7 @@ outlines (the strip narrowed as the blade texture's mask narrows it) moved along
 the ground, the patch tiled so that its neighbours' shadows fall in too, averaged over the
 aperiodic tiling's four mirror states — for every density at once: a point is shadowed at
 density x when a blade with a threshold below x covers it (the blades the geometry keeps).
+On level ground; the ground's shader lengthens the shadows on a slope (shaders/ground.glsl).
 """
 
 from __future__ import annotations

@@ -156,7 +156,7 @@ class GroundRenderer:
             p[name].value = value
         if self.shadows is not None:
             if self._shadow_table is None:
-                size = (SAMPLES * MAX_TYPES, SAMPLES)
+                size = (SAMPLES * MAX_TYPES, 1)
                 self._shadow_table = self.ctx.texture(size, 1, dtype="f4")
                 self._shadow_table.filter = (moderngl.LINEAR, moderngl.LINEAR)
             self.shadows.apply(p, self._shadow_table)

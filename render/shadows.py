@@ -50,12 +50,11 @@ class GroundShadows:
     density: float
 
     def apply(self, program: moderngl.Program, table: moderngl.Texture) -> None:
-        """Set the uniforms; `table` (MAX_TYPES · SAMPLES × SAMPLES, one float) takes the
-        share of the sun the ground keeps."""
+        """Set the uniforms; `table` (MAX_TYPES · SAMPLES × 1, one float) takes each type's
+        cover on level ground."""
         n = len(self.channels)
-        blocks = np.ones((SAMPLES, MAX_TYPES, SAMPLES), np.float32)
-        for t in range(n):
-            blocks[:, t] = kept_sun(self.cover[t], self.strength)
+        blocks = np.zeros((MAX_TYPES, SAMPLES), np.float32)
+        blocks[:n] = self.cover[:n]
         table.write(blocks.tobytes())
         table.use(SHADOW_UNIT)
         spans = [(a, min(b, 1e30), 0.0, 0.0) for a, b in self.spans]
@@ -70,18 +69,9 @@ class GroundShadows:
             "u_shadow_span": np.array(spans, np.float32).tobytes(),
             "u_shadow_fade": np.array(fades, np.float32).tobytes(),
             "u_shadow_density": self.density,
+            "u_shadow_strength": self.strength,
         }
         set_uniforms(program, values)
-
-
-def kept_sun(cover: np.ndarray, strength: float) -> np.ndarray:
-    """(w, x) on the 0 … 1 grid of `cover`: the share of the sun the ground keeps at density x
-    where the geometry casts the shadows of the blades below w · x, (1 − s·cover(x)) /
-    (1 − s·cover(w·x)): all the blades' shadows, on average, with the geometry's."""
-    x = np.linspace(0.0, 1.0, len(cover))
-    everything = 1.0 - strength * cover
-    cast = 1.0 - strength * np.interp(x[:, None] * x[None, :], x, cover)
-    return everything[None, :] / np.maximum(cast, 1e-3)
 
 
 def ground_shadows(p: FramePipeline, frame: FrameUniforms, cells: list) -> GroundShadows | None:

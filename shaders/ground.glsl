@@ -53,6 +53,7 @@ uniform vec4 u_shadow_channel[4];  // one-hot: the type's density channel
 uniform vec4 u_shadow_span[4];
 uniform vec4 u_shadow_fade[4];
 uniform float u_shadow_density;  // the document's global density
+uniform float u_shadow_strength;
 
 float geometry_share(int type, float d) {
     vec4 span = u_shadow_span[type];
@@ -64,18 +65,43 @@ float geometry_share(int type, float d) {
     return w;
 }
 
-float unshadowed(vec2 uv, float d) {
+// The share of the ground in the shadows of the type's blades below density x, the shadows
+// `k` times as long as on level ground: the table's cover c on level ground is a union of
+// shadows dropped at random, 1 − c = exp(−λ · area), and each shadow's area grows with its length
+float shadow_cover(int type, float x, float k) {
+    float at = (clamp(x, 0.0, 1.0) * 16.0 + 0.5) / 17.0;
+    float c = textureLod(u_shadow_table, vec2((float(type) + at) / 4.0, 0.5), 0.0).r;
+    return 1.0 - pow(max(1.0 - c, 0.0), k);
+}
+
+// The share of the sun the ground keeps where the blades' shadows are not drawn: at density x
+// all the blades' shadows on average, less those the geometry casts (the blades below w · x),
+// (1 − s·cover(x)) / (1 − s·cover(w·x)); `k` as shadow_cover's
+float unshadowed(vec2 uv, float d, float k) {
     vec4 density = textureLod(u_design, vec3(uv, 0.0), 0.0) * u_shadow_density;
     float sun = 1.0;
     for (int t = 0; t < u_shadow_types; ++t) {
-        vec2 at = vec2(clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0), geometry_share(t, d));
-        at = (at * 16.0 + 0.5) / 17.0;
-        sun *= textureLod(u_shadow_table, vec2((float(t) + at.x) / 4.0, at.y), 0.0).r;
+        float x = clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0);
+        float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, x, k);
+        float drawn = 1.0 - u_shadow_strength * shadow_cover(t, geometry_share(t, d) * x, k);
+        sun *= all_of_them / max(drawn, 1e-3);
     }
     return sun;
 }
+
+// How much longer a blade's shadow falls on the ground's slope at uv than on level ground: a
+// blade stands upright and the geometry casts it along the sun (no lower than 5°) onto the
+// ground's plane at its root (_blade_vertex.glsl, SHADOW); per unit of the blade's height
+// the shadow reaches n_y / (sun · n) across the ground's plan, against 1 / sun_y level
+float shadow_length(vec2 uv) {
+    if (u_height_scale <= 0.0) return 1.0;
+    vec3 n = ground_normal(uv, 1.0 / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6)));
+    vec3 sun = normalize(vec3(u_light_dir.x, max(u_light_dir.y, 0.0872), u_light_dir.z));
+    return sun.y * n.y / max(dot(sun, n), 0.0872);
+}
 #else
-float unshadowed(vec2 uv, float d) { return 1.0; }
+float unshadowed(vec2 uv, float d, float k) { return 1.0; }
+float shadow_length(vec2 uv) { return 1.0; }
 #endif
 
 in vec3 v_world;
@@ -85,7 +111,8 @@ void main() {
     vec2 p = v_world.xz;
     float inside = max(u_mesh, step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
                  * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w));
-    float sun = inside > 0.0 ? unshadowed(soil_uv(p), distance(u_eye.xz, p)) : 1.0;
+    vec2 uv = soil_uv(p);
+    float sun = inside > 0.0 ? unshadowed(uv, distance(u_eye.xz, p), shadow_length(uv)) : 1.0;
     f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 

@@ -102,3 +102,38 @@ def test_the_shadows_mean_darkening_goes_on_past_the_blades(headless, scene, cam
         want, got = geometry[rows].mean(), lod[rows].mean()
         assert want > 1.0, f"{scene} {side}: the shadows darken the rows by {want:.2f} only"
         assert abs(got - want) < 0.2 * want, f"{scene} {side}: {got:.2f} against {want:.2f}"
+
+
+def test_the_far_ground_darkens_a_slope_as_the_blades_shadows_do(headless):
+    """The blades stand upright on a slope and their shadows fall along the sun onto it: on a
+    slope turned away from the sun they reach farther across the ground than on one turned
+    towards it. The volume's ground, where no blade casts a shadow, loses as much of its sun
+    as the blades' shadows take on either slope (within a third); taken as on level ground it
+    would lose the same on both."""
+    out = {}
+    for sign in (1.0, -1.0):
+        doc = get_scene("patch-grid").document()
+        doc.density = 0.3
+        sun = doc.light.sun_direction
+        way = sun[[0, 2]] / np.linalg.norm(sun[[0, 2]])
+        w, h = doc.maps.size
+        v, u = np.mgrid[0:h, 0:w]
+        along = ((u + 0.5) / w - 0.5) * way[0] + ((v + 0.5) / h - 0.5) * way[1]
+        doc.maps.write("height", 0, 0, np.clip(0.5 + sign * along, 0.0, 1.0).astype(np.float32))
+        columns = doc.terrain_spec.columns
+        doc.terrain_spec = dataclasses.replace(doc.terrain_spec, height_scale=0.6 * columns)
+        x0, z0, x1, z1 = doc.terrain.rect
+        middle = ((x0 + x1) / 2, 0.3 * columns, (z0 + z1) / 2)  # half way up: 0.5 · scale
+        camera = Camera(target=middle, yaw=0.0, pitch=89.0, distance=3.0)
+        for mode in ("geometry", "volume"):
+            renderer = headless(doc, mode=mode)
+            _lit(doc, False)
+            before = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+            _lit(doc, True)
+            after = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+            out[sign, mode] = (before - after).mean()
+    steep, gentle = sorted((1.0, -1.0), key=lambda s: -out[s, "geometry"])
+    assert out[steep, "geometry"] > 1.5 * out[gentle, "geometry"]
+    for sign in (steep, gentle):
+        want, got = out[sign, "geometry"], out[sign, "volume"]
+        assert abs(got - want) < want / 3, f"slope {sign:+.0f}: {got:.2f} against {want:.2f}"
