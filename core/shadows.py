@@ -3,9 +3,9 @@
 Near the eye the blades cast their shadows as geometry (shaders/geometry.glsl, SHADOW): each
 blade is drawn a second time with every vertex moved along the sun onto the ground's plane at
 its root, in the colour of the ground without the sun, covering `shadow_strength` of a pixel's
-samples (screen-door transparency through the coverage mask). All blades of a cell pick the
-same samples of a pixel, so overlapping shadows do not darken twice and need no sorting: a point
-of the ground loses `strength` of its sun wherever any blade's shadow falls on it.
+samples (screen-door transparency through the coverage mask). All shadows pick the same
+samples of a pixel, so overlapping shadows do not darken twice and need no sorting: a point of
+the ground loses `strength` of its sun wherever any blade's shadow falls on it.
 
 The representations farther out cast none; there the ground loses what the blades' shadows take
 on average (shaders/ground.glsl): `strength` times the share of a cell's ground that the union

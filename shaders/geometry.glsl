@@ -65,8 +65,8 @@ out vec4 f_color;
 #if defined SHADOW
 // The blades' shadows (core/shadows.py; Papavasiliou 3.6): the blade's outline moved onto the
 // ground along the sun (_blade_vertex.glsl), in the ground's colour without the sun, covering
-// u_shadow_strength of the pixel's samples. Every blade of a cell has the cell's salt: its
-// shadows pick the same samples, and where they overlap the ground is shadowed once.
+// u_shadow_strength of the pixel's samples. Every shadow has the same salt: shadows pick the
+// same samples of a pixel, and where they overlap the ground is shadowed once.
 #include "_design.glsl"
 #include "_soil.glsl"
 uniform float u_shadow_strength;
