@@ -106,6 +106,23 @@ def _triangle(p0, p1, p2, value, image, n, m):  # pragma: no cover - compiled
                     image[i, j] = value
 
 
+def reach(patch: GrassPatch) -> float:
+    """How high up its blades a patch's shadows come from on average: the height of the
+    centroid of its blades' outlines (narrowed as in `cover`), in the patch's units. A point of
+    the ground lies in the shadows of blades rooted up to a blade's height times the shadow's
+    length per unit of height towards the sun, this far on average."""
+    outlines, _ = _outlines(patch)
+    if not len(outlines):
+        return 0.0
+    rows = outlines.shape[1] // 2
+    left, right = outlines[:, :rows], outlines[:, rows:][:, ::-1]
+    width = np.linalg.norm(right - left, axis=-1)
+    y = 0.5 * (left[..., 1] + right[..., 1])
+    area = 0.5 * (width[:, 1:] + width[:, :-1]) * np.abs(np.diff(y, axis=1))
+    middle = 0.5 * (y[:, 1:] + y[:, :-1])
+    return float((area * middle).sum() / max(area.sum(), 1e-12))
+
+
 def _outlines(patch: GrassPatch) -> tuple[np.ndarray, np.ndarray]:
     """Each blade's outline (blades, 2 · rows, 3) — up its left edge, down its right — as the
     blade texture's mask narrows its strip, and its threshold."""

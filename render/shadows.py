@@ -15,7 +15,7 @@ import numpy as np
 
 from core.lod import NO_FADE
 from core.patch import GrassPatch
-from core.shadows import SAMPLES, cover
+from core.shadows import SAMPLES, cover, reach
 from render.ground import MAX_TYPES
 from render.uniforms import SHADOW_UNIT, set_uniforms
 
@@ -43,6 +43,7 @@ class GroundShadows:
     """shaders/ground.glsl's SHADOWS uniforms for one view."""
 
     cover: np.ndarray  # (types, SAMPLES)
+    reach: tuple[float, ...]  # core/shadows.py reach per type
     channels: tuple[int, ...]
     spans: tuple[tuple[float, float], ...]  # where each type's geometry draws blades
     fades: tuple[tuple[float, float, float, float], ...]
@@ -70,6 +71,9 @@ class GroundShadows:
             "u_shadow_fade": np.array(fades, np.float32).tobytes(),
             "u_shadow_density": self.density,
             "u_shadow_strength": self.strength,
+            "u_shadow_reach": np.array(
+                list(self.reach) + [0.0] * (MAX_TYPES - n), np.float32
+            ).tobytes(),
         }
         set_uniforms(program, values)
 
@@ -80,19 +84,20 @@ def ground_shadows(p: FramePipeline, frame: FrameUniforms, cells: list) -> Groun
     if not light.blade_shadows:
         return None
     sun = light.sun_direction
-    covers, channels, spans, fades = [], [], [], []
+    covers, reaches, channels, spans, fades = [], [], [], [], []
     for grass, view in list(zip(p.grass_types, cells, strict=True))[:MAX_TYPES]:
         patch = grass.patch
         if patch is None:
             continue
         covers.append(patch_cover(patch, sun, frame.tiling))
+        reaches.append(reach(patch))
         channels.append(grass.density_channel)
         spans.append(view.blades if view.blades is not None else (1.0, 0.0))
         fades.append(view.fades.get(("geometry", 0), NO_FADE))
     if not covers:
         return None
     return GroundShadows(
-        np.array(covers), tuple(channels), tuple(spans), tuple(fades), light.shadow_strength,
+        np.array(covers), tuple(reaches), tuple(channels), tuple(spans), tuple(fades), light.shadow_strength,
         float(p.density),
     )  # fmt: skip
 

@@ -54,6 +54,7 @@ uniform vec4 u_shadow_span[4];
 uniform vec4 u_shadow_fade[4];
 uniform float u_shadow_density;  // the document's global density
 uniform float u_shadow_strength;
+uniform float u_shadow_reach[4];  // core/shadows.py reach: where a type's shadows come from
 
 float geometry_share(int type, float d) {
     vec4 span = u_shadow_span[type];
@@ -76,11 +77,14 @@ float shadow_cover(int type, float x, float k) {
 
 // The share of the sun the ground keeps where the blades' shadows are not drawn: at density x
 // all the blades' shadows on average, less those the geometry casts (the blades below w · x),
-// (1 − s·cover(x)) / (1 − s·cover(w·x)); `k` as shadow_cover's
-float unshadowed(vec2 uv, float d, float k) {
-    vec4 density = textureLod(u_design, vec3(uv, 0.0), 0.0) * u_shadow_density;
+// (1 − s·cover(x)) / (1 − s·cover(w·x)); `k` as shadow_cover's. The density is the one where
+// the shadows falling here stand: `reach` up the blades towards the sun (`towards`: the uv
+// offset per unit of height), so the bare ground beside grass gets the grass's shadows.
+float unshadowed(vec2 uv, float d, float k, vec2 towards) {
     float sun = 1.0;
     for (int t = 0; t < u_shadow_types; ++t) {
+        vec2 at = uv + towards * (k * u_shadow_reach[t]);
+        vec4 density = textureLod(u_design, vec3(at, 0.0), 0.0) * u_shadow_density;
         float x = clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0);
         float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, x, k);
         float drawn = 1.0 - u_shadow_strength * shadow_cover(t, geometry_share(t, d) * x, k);
@@ -99,9 +103,17 @@ float shadow_length(vec2 uv) {
     vec3 sun = normalize(vec3(u_light_dir.x, max(u_light_dir.y, 0.0872), u_light_dir.z));
     return sun.y * n.y / max(dot(sun, n), 0.0872);
 }
+
+// towards the sun across the design maps, per unit of a blade's height: where the blades stand
+// whose shadows fall at a point of level ground (the sun no lower than 5°, as they are cast)
+vec2 shadow_source() {
+    vec3 sun = normalize(vec3(u_light_dir.x, max(u_light_dir.y, 0.0872), u_light_dir.z));
+    return sun.xz / sun.y / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6));
+}
 #else
-float unshadowed(vec2 uv, float d, float k) { return 1.0; }
+float unshadowed(vec2 uv, float d, float k, vec2 towards) { return 1.0; }
 float shadow_length(vec2 uv) { return 1.0; }
+vec2 shadow_source() { return vec2(0.0); }
 #endif
 
 in vec3 v_world;
@@ -112,7 +124,8 @@ void main() {
     float inside = max(u_mesh, step(u_grass_rect.x, p.x) * step(u_grass_rect.y, p.y)
                  * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w));
     vec2 uv = soil_uv(p);
-    float sun = inside > 0.0 ? unshadowed(uv, distance(u_eye.xz, p), shadow_length(uv)) : 1.0;
+    float d = distance(u_eye.xz, p);
+    float sun = inside > 0.0 ? unshadowed(uv, d, shadow_length(uv), shadow_source()) : 1.0;
     f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 

@@ -10,7 +10,7 @@ import pytest
 from core.lighting import Lighting
 from core.params import PRESETS
 from core.patch import generate_patch
-from core.shadows import _outlines, cover
+from core.shadows import _outlines, cover, reach
 
 
 def _sun(elevation: float, azimuth: float = 135.0) -> np.ndarray:
@@ -68,3 +68,19 @@ def test_the_light_keeps_its_shadow_settings_and_refuses_bad_ones(tmp_path):
         Lighting(shadow_strength=1.5)
     with pytest.raises(ValueError, match="blade_shadows"):
         Lighting(blade_shadows=1.0)
+
+
+def test_shadows_come_from_a_third_of_the_way_up_tapering_upright_blades():
+    """reach: the height of the blades' outlines' centroid. Upright blades narrowing to their
+    tips have it below half their length and above a third of it less the tip's narrowing;
+    blades twice as long reach twice as far."""
+    upright = PRESETS["short-cut turf"].replace(tilt_min=0.0, tilt_max=0.0, bending=0.0)
+    patch = generate_patch(upright)
+    length = 0.5 * (upright.length_min + upright.length_max)
+    assert 0.25 * length < reach(patch) < 0.5 * length
+    longer = upright.replace(
+        length_min=2 * upright.length_min,
+        length_max=2 * upright.length_max,
+        patch_height=2 * upright.patch_height,
+    )
+    assert reach(generate_patch(longer)) == pytest.approx(2 * reach(patch), rel=0.05)

@@ -137,3 +137,39 @@ def test_the_far_ground_darkens_a_slope_as_the_blades_shadows_do(headless):
     for sign in (steep, gentle):
         want, got = out[sign, "geometry"], out[sign, "volume"]
         assert abs(got - want) < want / 3, f"slope {sign:+.0f}: {got:.2f} against {want:.2f}"
+
+
+def test_beyond_the_blades_the_bare_ground_beside_grass_gets_its_shadows(headless):
+    """A tuft drawn by the volume casts no shadows of its own; the bare ground beside it on the
+    side away from the sun still darkens as where the tuft's blades cast them (the ground takes
+    the density where the shadows falling there come from), and not towards the sun."""
+    doc = get_scene("patch-grid").document()
+    w, h = doc.maps.size
+    v, u = np.mgrid[0:h, 0:w]
+    tuft = ((u - w / 2) ** 2 + (v - h / 2) ** 2) < (w / 12) ** 2
+    doc.maps.write("density", 0, 0, np.repeat(tuft[..., None], 4, axis=2).astype(np.float32))
+    x0, z0, x1, z1 = doc.terrain.rect
+    middle = np.array([(x0 + x1) / 2, 0.0, (z0 + z1) / 2])
+    camera = Camera(target=tuple(middle), yaw=0.0, pitch=89.0, distance=3.0)
+    sun = doc.light.sun_direction
+    way = np.array([sun[0], 0.0, sun[2]]) / np.linalg.norm(sun[[0, 2]])
+    edge = doc.terrain_spec.columns / 12  # the tuft's radius in world units
+    darker = {}
+    for mode in ("geometry", "volume"):
+        renderer = headless(doc, mode=mode)
+        _lit(doc, False)
+        before = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+        _lit(doc, True)
+        after = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+        darker[mode] = (before - after).mean(axis=-1)
+
+    def beside(mode: str, sign: float) -> float:
+        x, y = _pixel(camera, SIZE, middle + sign * (edge + 0.06) * way)
+        return float(darker[mode][y - 3 : y + 4, x - 3 : x + 4].mean())
+
+    cast = beside("geometry", -1.0)
+    assert cast > 6.0, f"the blades' own shadows beside the tuft: {cast:.2f}"
+    assert 0.4 * cast < beside("volume", -1.0) < 2.0 * cast, (
+        f"{beside('volume', -1.0):.2f} against {cast:.2f}"
+    )
+    assert abs(beside("volume", 1.0)) < 1.0
