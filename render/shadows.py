@@ -52,10 +52,11 @@ class GroundShadows:
 
     def apply(self, program: moderngl.Program, table: moderngl.Texture) -> None:
         """Set the uniforms; `table` (MAX_TYPES · SAMPLES × 1, one float) takes each type's
-        cover on level ground."""
+        cover on level ground as −ln(1 − cover): a union of shadows dropped at random covers
+        1 − exp(−λ · area), and the ground scales λ · area with the shadows' length."""
         n = len(self.channels)
         blocks = np.zeros((MAX_TYPES, SAMPLES), np.float32)
-        blocks[:n] = self.cover[:n]
+        blocks[:n] = -np.log1p(-np.minimum(self.cover[:n], 0.999))
         table.write(blocks.tobytes())
         table.use(SHADOW_UNIT)
         spans = [(a, min(b, 1e30), 0.0, 0.0) for a, b in self.spans]

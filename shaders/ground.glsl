@@ -22,6 +22,7 @@ in vec2 in_corner;             // -1 … 1 (the plane) or 0 … 1 (the grid over
 in float in_drop;              // 1 on a skirt's lower edge, else 0
 out vec3 v_world;
 
+
 void main() {
     if (u_mesh > 0.5) {
         vec2 p = mix(u_grass_rect.xy, u_grass_rect.zw, in_corner);
@@ -44,8 +45,9 @@ uniform float u_mesh;
 // density channel, the distances where its geometry level draws blades, (begin, end), and the
 // transitions' (e1, e2) in and out (core/lod.py fades). The geometry there casts the shadows of
 // the blades it keeps, those below w · density; the ground takes away the rest of what all the
-// blades would, 1 − (1 − s·cover(x)) / (1 − s·cover(w·x)) of the sun on average: that ratio is
-// the table, a 17 × 17 block per type side by side, x = density along, w down (render/shadows.py).
+// blades would, 1 − (1 − s·cover(x)) / (1 − s·cover(w·x)) of the sun on average. The table
+// holds each type's −ln(1 − cover) on level ground at 17 densities, the types side by side
+// (render/shadows.py).
 #if defined SHADOWS
 uniform int u_shadow_types;
 uniform sampler2D u_shadow_table;
@@ -67,12 +69,13 @@ float geometry_share(int type, float d) {
 }
 
 // The share of the ground in the shadows of the type's blades below density x, the shadows
-// `k` times as long as on level ground: the table's cover c on level ground is a union of
-// shadows dropped at random, 1 − c = exp(−λ · area), and each shadow's area grows with its length
+// `k` times as long as on level ground: a union of shadows dropped at random covers
+// 1 − exp(−λ · area), each shadow's area grows with its length, and the table holds λ · area
+// on level ground (render/shadows.py)
 float shadow_cover(int type, float x, float k) {
     float at = (clamp(x, 0.0, 1.0) * 16.0 + 0.5) / 17.0;
-    float c = textureLod(u_shadow_table, vec2((float(type) + at) / 4.0, 0.5), 0.0).r;
-    return 1.0 - pow(max(1.0 - c, 0.0), k);
+    float depth = textureLod(u_shadow_table, vec2((float(type) + at) / 4.0, 0.5), 0.0).r;
+    return 1.0 - exp(-k * depth);
 }
 
 // The share of the sun the ground keeps where the blades' shadows are not drawn: at density x
@@ -83,23 +86,28 @@ float shadow_cover(int type, float x, float k) {
 float unshadowed(vec2 uv, float d, float k, vec2 towards) {
     float sun = 1.0;
     for (int t = 0; t < u_shadow_types; ++t) {
+        float w = geometry_share(t, d);
+        if (w >= 1.0) continue;  // the geometry casts every blade's shadow here
         vec2 at = uv + towards * (k * u_shadow_reach[t]);
         vec4 density = textureLod(u_design, vec3(at, 0.0), 0.0) * u_shadow_density;
         float x = clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0);
         float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, x, k);
-        float drawn = 1.0 - u_shadow_strength * shadow_cover(t, geometry_share(t, d) * x, k);
+        float drawn = w > 0.0 ? 1.0 - u_shadow_strength * shadow_cover(t, w * x, k) : 1.0;
         sun *= all_of_them / max(drawn, 1e-3);
     }
     return sun;
 }
 
-// How much longer a blade's shadow falls on the ground's slope at uv than on level ground: a
-// blade stands upright and the geometry casts it along the sun (no lower than 5°) onto the
-// ground's plane at its root (_blade_vertex.glsl, SHADOW); per unit of the blade's height
-// the shadow reaches n_y / (sun · n) across the ground's plan, against 1 / sun_y level
-float shadow_length(vec2 uv) {
+
+// How much longer a blade's shadow falls on the ground's slope than on level ground: a blade
+// stands upright and the geometry casts it along the sun (no lower than 5°) onto the ground's
+// plane at its root (_blade_vertex.glsl, SHADOW); per unit of the blade's height the shadow
+// reaches n_y / (sun · n) across the ground's plan, against 1 / sun_y level. n: the ground's
+// triangle here, from how the position changes across the pixel (no height map reads)
+float shadow_length(vec3 world) {
     if (u_height_scale <= 0.0) return 1.0;
-    vec3 n = ground_normal(uv, 1.0 / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6)));
+    vec3 n = cross(dFdy(world), dFdx(world));
+    n = dot(n, n) > 1e-20 ? normalize(n * sign(n.y)) : vec3(0.0, 1.0, 0.0);
     vec3 sun = normalize(vec3(u_light_dir.x, max(u_light_dir.y, 0.0872), u_light_dir.z));
     return sun.y * n.y / max(dot(sun, n), 0.0872);
 }
@@ -112,7 +120,7 @@ vec2 shadow_source() {
 }
 #else
 float unshadowed(vec2 uv, float d, float k, vec2 towards) { return 1.0; }
-float shadow_length(vec2 uv) { return 1.0; }
+float shadow_length(vec3 world) { return 1.0; }
 vec2 shadow_source() { return vec2(0.0); }
 #endif
 
@@ -125,7 +133,7 @@ void main() {
                  * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w));
     vec2 uv = soil_uv(p);
     float d = distance(u_eye.xz, p);
-    float sun = inside > 0.0 ? unshadowed(uv, d, shadow_length(uv), shadow_source()) : 1.0;
+    float sun = inside > 0.0 ? unshadowed(uv, d, shadow_length(v_world), shadow_source()) : 1.0;
     f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 
