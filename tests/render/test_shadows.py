@@ -11,10 +11,20 @@ from app.scenes import get_scene
 from core.camera import Camera
 
 SIZE = (480, 270)
+MODES = ("geometry", "volume")
 
 
 def _lit(doc, on: bool, strength: float = 0.6):
     doc.light = dataclasses.replace(doc.light, blade_shadows=on, shadow_strength=strength)
+
+
+def _darkening(renderer, doc, camera) -> np.ndarray:
+    """(h, w): how much darker each pixel is with the blades' shadows than without."""
+    _lit(doc, False)
+    before = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+    _lit(doc, True)
+    after = renderer.render(camera, SIZE, measure=False)[0].astype(float)
+    return (before - after).mean(axis=-1)
 
 
 def _pixel(camera, size, point) -> tuple[int, int]:
@@ -73,11 +83,7 @@ def test_the_shadows_mean_darkening_goes_on_past_the_blades(headless, scene, cam
 
     def darkening(doc, mode, cam):
         renderer = headless(doc, mode=mode)
-        _lit(doc, False)
-        off = renderer.render(cam, SIZE, measure=False)[0].astype(float)
-        _lit(doc, True)
-        on = renderer.render(cam, SIZE, measure=False)[0].astype(float)
-        return (off - on).mean(axis=-1).mean(axis=1), renderer
+        return _darkening(renderer, doc, cam).mean(axis=1), renderer
 
     doc = get_scene(scene).document()
     doc.density = 0.3
@@ -125,13 +131,8 @@ def test_the_far_ground_darkens_a_slope_as_the_blades_shadows_do(headless):
         x0, z0, x1, z1 = doc.terrain.rect
         middle = ((x0 + x1) / 2, 0.3 * columns, (z0 + z1) / 2)  # half way up: 0.5 · scale
         camera = Camera(target=middle, yaw=0.0, pitch=89.0, distance=3.0)
-        for mode in ("geometry", "volume"):
-            renderer = headless(doc, mode=mode)
-            _lit(doc, False)
-            before = renderer.render(camera, SIZE, measure=False)[0].astype(float)
-            _lit(doc, True)
-            after = renderer.render(camera, SIZE, measure=False)[0].astype(float)
-            out[sign, mode] = (before - after).mean()
+        for mode in MODES:
+            out[sign, mode] = _darkening(headless(doc, mode=mode), doc, camera).mean()
     steep, gentle = sorted((1.0, -1.0), key=lambda s: -out[s, "geometry"])
     assert out[steep, "geometry"] > 1.5 * out[gentle, "geometry"]
     for sign in (steep, gentle):
@@ -154,14 +155,7 @@ def test_beyond_the_blades_the_bare_ground_beside_grass_gets_its_shadows(headles
     sun = doc.light.sun_direction
     way = np.array([sun[0], 0.0, sun[2]]) / np.linalg.norm(sun[[0, 2]])
     edge = doc.terrain_spec.columns / 12  # the tuft's radius in world units
-    darker = {}
-    for mode in ("geometry", "volume"):
-        renderer = headless(doc, mode=mode)
-        _lit(doc, False)
-        before = renderer.render(camera, SIZE, measure=False)[0].astype(float)
-        _lit(doc, True)
-        after = renderer.render(camera, SIZE, measure=False)[0].astype(float)
-        darker[mode] = (before - after).mean(axis=-1)
+    darker = {mode: _darkening(headless(doc, mode=mode), doc, camera) for mode in MODES}
 
     def beside(mode: str, sign: float) -> float:
         x, y = _pixel(camera, SIZE, middle + sign * (edge + 0.06) * way)
