@@ -107,7 +107,8 @@ float unshadowed(vec2 uv, float d, float k, vec2 towards) {
 float shadow_length(vec3 world) {
     if (u_height_scale <= 0.0) return 1.0;
     vec3 n = cross(dFdy(world), dFdx(world));
-    n = dot(n, n) > 1e-20 ? normalize(n * sign(n.y)) : vec3(0.0, 1.0, 0.0);
+    n = n.y < 0.0 ? -n : n;
+    n = dot(n, n) > 1e-20 ? normalize(n) : vec3(0.0, 1.0, 0.0);
     vec3 sun = normalize(vec3(u_light_dir.x, max(u_light_dir.y, 0.0872), u_light_dir.z));
     return sun.y * n.y / max(dot(sun, n), 0.0872);
 }

@@ -167,3 +167,18 @@ def test_beyond_the_blades_the_bare_ground_beside_grass_gets_its_shadows(headles
         f"{beside('volume', -1.0):.2f} against {cast:.2f}"
     )
     assert abs(beside("volume", 1.0)) < 1.0
+
+
+def test_no_pixel_of_hilly_ground_goes_black_under_the_shadows(headless):
+    """The far ground's shadows on a hilly meadow take away at most the shadow strength's share
+    of the sun: no pixel comes out black (a vertical skirt's normal once made the shadows'
+    length NaN along a crest)."""
+    doc = get_scene("meadow").document()
+    camera = doc.camera("path")
+    renderer = headless(doc)
+    _lit(doc, False)
+    before = renderer.render(camera, (960, 540), measure=False)[0].astype(float).sum(axis=-1)
+    _lit(doc, True)
+    after = renderer.render(camera, (960, 540), measure=False)[0].astype(float).sum(axis=-1)
+    lit = before > 60.0
+    assert (after[lit] / before[lit]).min() > 0.3
