@@ -176,12 +176,13 @@ void main() {
     float tau_top = -log(max(1.0 - c.a, 1e-4)) * v_view.y;
     float tau_side = mix(u_side_column, u_over_column, under) / v_view.x;
     float tau = sqrt(tau_top * tau_top + tau_side * tau_side);
-    c.a = 1.0 - exp(-tau);
     // without a top view, the thresholds under a texel are all the blades': uniform
     float threshold = top_seen ? data.a : 0.5;
-    // of the blades under the texel, the share kept; alpha-to-coverage draws that share
-    c.a *= lod_share(threshold, top_seen ? level_value(u_top_spread, lod) : 0.28867513, density,
-                     lod_at(v_lod, distance(u_eye.xz, v_world.xz), v_size));
+    // of the blades under the texel, the share kept: a share of blades picked at random by
+    // their thresholds meets the ray with that share of the depth (alpha-to-coverage draws it)
+    float kept = lod_share(threshold, top_seen ? level_value(u_top_spread, lod) : 0.28867513,
+                           density, lod_at(v_lod, distance(u_eye.xz, v_world.xz), v_size));
+    c.a = 1.0 - exp(-tau * kept);
     if (c.a < 0.02) discard;
     // The normal is not mirrored: far away a mirrored macro-cell would flip the small sideways
     // part of the patch's average normal and light hundreds of cells a few per cent brighter

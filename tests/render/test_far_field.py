@@ -330,3 +330,32 @@ def test_far_grass_seen_from_straight_above_has_the_blades_colour(headless):
         assert mask.sum() > 500, name
         diff = (shaded[mask].mean(axis=0) - blades[mask].mean(axis=0)) / 255.0
         assert np.linalg.norm(diff) < 0.04, (name, diff)
+
+
+def test_image_based_grass_thins_with_the_density_as_the_blades_do(headless):
+    """A density below 1 keeps a share of the blades picked by their thresholds: together they
+    still cover as a thinner union does (1 − exp(−share · depth)), not the share of what all of
+    them cover. The image-based grass's coverage at density 0.3, against its own at 1, is the
+    blades' within 0.15 (the share of the top view's cover gave 0.29 against the blades' 0.63)."""
+    from render.grass_type import technique_colors
+
+    colours = technique_colors()
+
+    def cover(density: float, mode: str) -> float:
+        doc = get_scene("bench").document()
+        doc.density = density
+        renderer = headless(doc, mode=mode)
+        renderer.pipeline.view = "techniques"
+        frame = renderer.render(doc.camera("default"), SIZE, measure=False)[0].astype(float)
+        return frame[SIZE[1] // 2 :].reshape(-1, 3)
+
+    ground = cover(0.0, "geometry")
+    share = {}
+    for mode in ("geometry", "image"):
+        tint = 255.0 * np.asarray(colours[mode][0])
+        covered = [
+            (((cover(d, mode) - ground) * (tint - ground)).sum(1) / ((tint - ground) ** 2).sum(1))
+            for d in (0.3, 1.0)
+        ]
+        share[mode] = covered[0].mean() / covered[1].mean()
+    assert abs(share["image"] - share["geometry"]) < 0.15, share
