@@ -98,7 +98,6 @@ float unshadowed(vec2 uv, float d, float k, vec2 towards) {
     return sun;
 }
 
-
 // How much longer a blade's shadow falls on the ground's slope than on level ground: a blade
 // stands upright and the geometry casts it along the sun (no lower than 5°) onto the ground's
 // plane at its root (_blade_vertex.glsl, SHADOW); per unit of the blade's height the shadow
@@ -134,7 +133,8 @@ void main() {
                  * step(p.x, u_grass_rect.z) * step(p.y, u_grass_rect.w));
     vec2 uv = soil_uv(p);
     float d = distance(u_eye.xz, p);
-    float sun = inside > 0.0 ? unshadowed(uv, d, shadow_length(v_world), shadow_source()) : 1.0;
+    float k = shadow_length(v_world);  // derivatives: outside any branch
+    float sun = inside > 0.0 ? unshadowed(uv, d, k, shadow_source()) : 1.0;
     f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 
