@@ -27,12 +27,12 @@ def _set(renderer, mode: str) -> None:
     """Segment LOD and the runs of blades on (`lod`, `floor`), or every blade with all its
     segments; `floor`: the blades' fragments discarded first."""
     import render.geometry as geometry
-    from benchmarks.volume_cost import _floor_loader
+    from benchmarks.volume_cost import floor_loader
     from render.shaders import load_program
 
     on = mode != "full" and mode != "one"
     renderer.pipeline.segment_lod = on
-    geometry.load_program = _floor_loader(_FLOOR) if mode == "floor" else load_program
+    geometry.load_program = floor_loader(_FLOOR) if mode == "floor" else load_program
     for grass in renderer.pipeline.grass_types:
         grass.geometry.spans = geometry.GeometryRenderer.spans if on else 1
 

@@ -29,7 +29,7 @@ _IMAGE_FLOOR = "    if (gl_FragCoord.x > -1.0) { f_color = vec4(0.3, 0.5, 0.1, 1
 IMAGE_SIZE = (1024, 768)
 
 
-def _floor_loader(patch: str):
+def floor_loader(patch: str):
     """load_program for a renderer module whose fragment stage begins with `patch`."""
     from render.shaders import ShaderError, stage_source
 
@@ -66,7 +66,7 @@ def _variant(name: str):
 
     load, steps = volume.load_program, volume.VolumeRenderer.max_steps
     if name == "fragment_floor":
-        volume.load_program = _floor_loader(_FLOOR)
+        volume.load_program = floor_loader(_FLOOR)
     elif name == "one_step":
         volume.VolumeRenderer.max_steps = 1
     elif name == "half_steps":
@@ -104,7 +104,7 @@ def _image_floor() -> list[dict]:
     camera = document.camera()
     rows, load = [], image.load_program
     for name in ("baseline", "fragment_floor"):
-        image.load_program = load if name == "baseline" else _floor_loader(_IMAGE_FLOOR)
+        image.load_program = load if name == "baseline" else floor_loader(_IMAGE_FLOOR)
         try:
             with HeadlessRenderer(document, mode="image") as renderer:
                 renderer.render(camera, IMAGE_SIZE)
