@@ -1,7 +1,10 @@
 """What the blades' shadows cost (core/shadows.py): at each camera, frames with the shadows on
 and off in turn (so that this machine's drift falls on both alike), the medians of t_a, of the
 shadow pass (t_s) and of the ground (t_m, which takes the far grass's share of shadow), and
-the share the shadows add to t_a.
+the share the shadows add to t_a; and across the hand-over from the blades to the volume
+(density 0.3, 480 × 270), how far the LOD frame's darkening strays from the all-geometry
+frame's row by row, against two yardsticks of blade detail: the all-geometry frame a blade's
+width to the side, and the same grass with two other aperiodic tilings.
 
 Run: `sward bench --suite shadows --out results.json`.
 """
@@ -44,4 +47,61 @@ def run() -> list[dict]:
                 row[f"{label}_{part}"] = statistics.median(times[shadows][part])
         row["added_t_a_percent"] = 100.0 * (row["on_t_a_ms"] / row["off_t_a_ms"] - 1.0)
         rows.append(row)
-    return rows
+    return rows + [
+        _hand_over(scene, name) for scene, name in (("bench", "zones"), ("meadow", "path"))
+    ]
+
+
+def _hand_over(scene: str, name: str) -> dict:
+    import numpy as np
+
+    from app.quality import shifted
+    from app.scenes import get_scene
+    from core.quality import technique_regions
+    from render.grass_type import technique_colors
+    from render.headless import HeadlessRenderer
+
+    size = (480, 270)
+    document = get_scene(scene).document()
+    document.density = 0.3
+    camera = document.camera(name)
+
+    def rows(mode: str, cam, regions: bool = False):
+        """Per image row, how much darker the shadows make it; with `regions` the rows'
+        shares of geometry and volume too."""
+        with HeadlessRenderer(document, mode=mode) as renderer:
+            frames = []
+            for shadows in (False, True):
+                document.light = dataclasses.replace(document.light, blade_shadows=shadows)
+                frames.append(renderer.render(cam, size, measure=False)[0].astype(float))
+            dark = (frames[0] - frames[1]).mean(axis=(1, 2))
+            if not regions:
+                return dark
+            renderer.pipeline.view = "techniques"
+            techniques = renderer.render(cam, size, measure=False)[0]
+        found = technique_regions(frames[1].astype(np.uint8), techniques, technique_colors())
+        return dark, found["geometry"].mean(axis=1), found["volume"].mean(axis=1)
+
+    lod, blades, volume = rows("lod", camera, regions=True)
+    first = int(np.flatnonzero(blades > 0.2)[0])  # the hand-over: 30 rows either side
+    band = np.arange(max(first - 30, 0), min(first + 30, size[1]))
+    geometry = rows("geometry", camera)
+    side = rows("geometry", shifted(camera, float(document.params(0).width_max)))
+    tilings = []
+    for seed in (11, 12):
+        document.terrain_spec = dataclasses.replace(document.terrain_spec, mirror_seed=seed)
+        tilings.append(rows("geometry", camera))
+
+    def strays(a, b) -> float:
+        return float(np.abs(a - b)[band].mean())
+
+    return {
+        "name": f"{scene}_{name}_hand_over",
+        "rows_lod": strays(lod, geometry),
+        "rows_shifted": strays(side, geometry),
+        "rows_tilings": max(strays(tilings[0], geometry), strays(tilings[1], geometry)),
+        "volume_side": float(lod[band[volume[band] > 0.5]].mean()),
+        "volume_side_geometry": float(geometry[band[volume[band] > 0.5]].mean()),
+        "blades_side": float(lod[band[blades[band] > 0.2]].mean()),
+        "blades_side_geometry": float(geometry[band[blades[band] > 0.2]].mean()),
+    }

@@ -38,6 +38,16 @@ def patch_cover(patch: GrassPatch, sun: np.ndarray, mirrored: bool) -> np.ndarra
     return kept[key]
 
 
+_reaches: weakref.WeakKeyDictionary[GrassPatch, float] = weakref.WeakKeyDictionary()
+
+
+def patch_reach(patch: GrassPatch) -> float:
+    """core/shadows.py reach, kept for the patch (it does not change with the sun)."""
+    if patch not in _reaches:
+        _reaches[patch] = reach(patch)
+    return _reaches[patch]
+
+
 @dataclass(frozen=True)
 class GroundShadows:
     """shaders/ground.glsl's SHADOWS uniforms for one view."""
@@ -91,15 +101,15 @@ def ground_shadows(p: FramePipeline, frame: FrameUniforms, cells: list) -> Groun
         if patch is None:
             continue
         covers.append(patch_cover(patch, sun, frame.tiling))
-        reaches.append(reach(patch))
+        reaches.append(patch_reach(patch))
         channels.append(grass.density_channel)
         spans.append(view.blades if view.blades is not None else (1.0, 0.0))
         fades.append(view.fades.get(("geometry", 0), NO_FADE))
     if not covers:
         return None
     return GroundShadows(
-        np.array(covers), tuple(reaches), tuple(channels), tuple(spans), tuple(fades), light.shadow_strength,
-        float(p.density),
+        np.array(covers), tuple(reaches), tuple(channels), tuple(spans), tuple(fades),
+        light.shadow_strength, float(p.density),
     )  # fmt: skip
 
 
