@@ -2,19 +2,21 @@
 
 Near the eye the blades cast their shadows as geometry (shaders/geometry.glsl, SHADOW): each
 blade is drawn a second time with every vertex moved along the sun onto the ground's plane at
-its root, in the colour of the ground without the sun, covering `shadow_strength` of a pixel's
-samples (screen-door transparency through the coverage mask). All shadows pick the same
-samples of a pixel, so overlapping shadows do not darken twice and need no sorting: a point of
-the ground loses `strength` of its sun wherever any blade's shadow falls on it.
+its root, in the colour of the ground without the sun. A shadow covers as much of a pixel as
+its blade does (the blade texture's alpha), within a `shadow_strength` share of the pixel's
+samples that every shadow shares (screen-door transparency through the coverage mask): shadows
+side by side within a pixel add up as their blades do, overlapping shadows darken once, and
+nothing needs sorting. A point of the ground loses `strength` of its sun wherever any blade's
+shadow falls on it.
 
-The representations farther out cast none; there the ground loses what the blades' shadows take
-on average (shaders/ground.glsl): `strength` times the share of a cell's ground that the union
-of its blades' shadows covers. `cover` measures that share from the patch itself — its blades'
-outlines (the strip narrowed as the blade texture's mask narrows it) moved along the sun onto
-the ground, the patch tiled so that its neighbours' shadows fall in too, averaged over the
-aperiodic tiling's four mirror states — for every density at once: a point is shadowed at
-density x when a blade with a threshold below x covers it (the blades the geometry keeps).
-On level ground; the ground's shader lengthens the shadows on a slope (shaders/ground.glsl).
+The representations farther out cast none; there the ground loses what the blades' shadows
+would take (shaders/ground.glsl), from the patch's `field`: where in a cell the union of its
+blades' shadows falls — their outlines (the strip narrowed as the blade texture's mask narrows
+it) moved along the sun onto the ground, the patch tiled so that its neighbours' shadows fall
+in too — per mirror state of the aperiodic tiling and for every density at once (a point is
+shadowed at density x when a blade with a threshold below x covers it: the blades the geometry
+keeps). A slope maps each shadow onto its plane stretched along the sun; on uneven terrain the
+field is drawn at a few such stretches (STRETCHES). `cover` is its mean over the cell.
 """
 
 from __future__ import annotations
@@ -28,6 +30,11 @@ from core.patch import GrassPatch, blade_fill
 
 SAMPLES = 17  # densities 0, 1/16 … 1 at which cover is given
 RASTER = 384  # texels across a cell where the shadows are drawn
+OUTLINE_STEPS = 4  # points of a blade's outline per row of its strip (`_outlines`)
+FIELD = 64  # texels across a cell of the field of where they fall (RASTER / 6 each)
+# the shadows' lengths over level ground's at which the field is drawn on uneven terrain; a
+# slope facing the sun shortens them, one facing away lengthens them (shaders/ground.glsl)
+STRETCHES = (0.5, 1.0, 2.0)
 LOWEST_SUN = math.sin(math.radians(5.0))  # a lower sun casts shadows as if it stood at 5°
 MIRRORS = ((1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0))
 
@@ -42,24 +49,48 @@ def cover(
     """(samples,) the share of a cell's ground in the shadow of the blades whose thresholds
     lie below x, for x = 0, 1 / (samples − 1) … 1; `sun` the unit vector towards the sun;
     `mirrored`: the cells are mirrored by the aperiodic tiling (the mean of its four states)."""
+    return field(patch, sun, mirrored, (1.0,), samples, raster, 1)[:, 0, :, 0, 0].mean(axis=0)
+
+
+def field(
+    patch: GrassPatch,
+    sun: np.ndarray,
+    mirrored: bool = True,
+    stretches: tuple[float, ...] = (1.0,),
+    samples: int = SAMPLES,
+    raster: int = RASTER,
+    texels: int = FIELD,
+) -> np.ndarray:
+    """Where in a cell the shadows fall: (states, stretches, samples, texels, texels) float32,
+    per mirror state of the aperiodic tiling (MIRRORS; the first alone if not `mirrored`), per
+    length of the shadows over level ground's (`stretches`: a slope lengthens them), per
+    density x = 0 … 1 as in `cover`, the share of each texel of the cell (rows along z, columns
+    along x) in the shadow of the blades below x. Its mean over the texels is `cover`."""
     outlines, thresholds = _outlines(patch)
+    states = MIRRORS if mirrored else MIRRORS[:1]
+    out = np.zeros((len(states), len(stretches), samples, texels, texels), np.float32)
     if not len(thresholds):
-        return np.zeros(samples)
+        return out
     sun = np.asarray(sun, np.float64)
     shift = -sun[[0, 2]] / max(float(sun[1]), LOWEST_SUN)  # ground offset per unit of height
-    levels = np.linspace(0.0, 1.0, samples)
-    states = MIRRORS if mirrored else MIRRORS[:1]
-    out = np.zeros(samples)
-    for sx, sz in states:
+    length = float(np.linalg.norm(shift))
+    way = shift / length if length > 0 else np.zeros(2)  # along the shadows, across the plan
+    for i, (sx, sz) in enumerate(states):
         points = outlines.copy()
         points[..., 0] = 0.5 + sx * (points[..., 0] - 0.5)
         points[..., 2] = 0.5 + sz * (points[..., 2] - 0.5)
-        ground = (points[..., [0, 2]] + points[..., 1:2] * shift) * raster  # along the sun
-        image = np.full((raster, raster), 2.0)
-        _shadows(ground, thresholds, image)
-        lowest = np.sort(image.ravel())
-        out += np.searchsorted(lowest, levels, side="left") / lowest.size
-    return out / len(states)
+        roots = 0.5 + np.array([sx, sz]) * (patch.roots.astype(np.float64) - 0.5)
+        # each shadow from its blade's root on level ground
+        level = points[..., [0, 2]] + points[..., 1:2] * shift - roots[:, None, :]
+        along = (level @ way)[..., None] * way
+        for j, k in enumerate(stretches):
+            # a slope scales the whole shadow along the sun by k: the ground's plane maps
+            # the plan by I − sun_xz n_xzᵀ / (sun · n), of determinant k, taken as that stretch
+            ground = (roots[:, None, :] + level + (k - 1.0) * along) * raster
+            image = np.full((raster, raster), 2.0)
+            _shadows(ground, thresholds, image)
+            out[i, j] = _below(image, texels, samples)
+    return out
 
 
 @numba.njit(cache=True)
@@ -79,31 +110,52 @@ def _shadows(ground, thresholds, image):  # pragma: no cover - compiled
             _triangle(a, d, e, t, image, n, m)
 
 
+@numba.njit(cache=True, inline="always")
+def _cross(ax, ay, bx, by, cy, lo, hi):  # pragma: no cover - compiled
+    """The span [lo, hi] widened to where edge a–b crosses the row at height cy."""
+    if (ay <= cy < by) or (by <= cy < ay):
+        x = ax + (cy - ay) * (bx - ax) / (by - ay)
+        return min(lo, x), max(hi, x)
+    return lo, hi
+
+
 @numba.njit(cache=True)
 def _triangle(p0, p1, p2, value, image, n, m):  # pragma: no cover - compiled
-    area = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])
-    if area == 0.0:
-        return
-    x0 = math.floor(min(p0[0], p1[0], p2[0]))
-    x1 = math.ceil(max(p0[0], p1[0], p2[0]))
-    y0 = math.floor(min(p0[1], p1[1], p2[1]))
-    y1 = math.ceil(max(p0[1], p1[1], p2[1]))
-    for py in range(y0, y1):
+    """The texels whose centres lie in the triangle, row by row (shadows are long and thin
+    and cross the texels' rows and columns at any angle: a row's span, not the bounding box)."""
+    x0, y0, x1, y1, x2, y2 = p0[0], p0[1], p1[0], p1[1], p2[0], p2[1]
+    for py in range(math.floor(min(y0, y1, y2)), math.ceil(max(y0, y1, y2))):
         cy = py + 0.5
-        for px in range(x0, x1):
-            cx = px + 0.5
-            w0 = (p1[0] - cx) * (p2[1] - cy) - (p2[0] - cx) * (p1[1] - cy)
-            w1 = (p2[0] - cx) * (p0[1] - cy) - (p0[0] - cx) * (p2[1] - cy)
-            w2 = (p0[0] - cx) * (p1[1] - cy) - (p1[0] - cx) * (p0[1] - cy)
-            if area > 0.0:
-                inside = w0 >= 0.0 and w1 >= 0.0 and w2 >= 0.0
-            else:
-                inside = w0 <= 0.0 and w1 <= 0.0 and w2 <= 0.0
-            if inside:
-                i = py % n
-                j = px % m
-                if value < image[i, j]:
-                    image[i, j] = value
+        lo, hi = math.inf, -math.inf
+        lo, hi = _cross(x0, y0, x1, y1, cy, lo, hi)
+        lo, hi = _cross(x1, y1, x2, y2, cy, lo, hi)
+        lo, hi = _cross(x2, y2, x0, y0, cy, lo, hi)
+        if lo > hi:
+            continue
+        i = py % n
+        for px in range(math.ceil(lo - 0.5), math.floor(hi - 0.5) + 1):
+            j = px % m
+            if value < image[i, j]:
+                image[i, j] = value
+
+
+@numba.njit(cache=True)
+def _below(image, texels, samples):  # pragma: no cover - compiled
+    """(samples, texels, texels): per density x = k / (samples − 1) the share of each block of
+    the image's texels (texels × texels blocks) whose value lies below x."""
+    steps = samples - 1
+    block = image.shape[0] // texels
+    counts = np.zeros((samples + 1, texels, texels))
+    for y in range(texels * block):
+        for x in range(texels * block):
+            # below k / steps from bin k on (a value of 2, no shadow, from none)
+            counts[min(int(image[y, x] * steps) + 1, samples), y // block, x // block] += 1.0
+    out = np.empty((samples, texels, texels), np.float32)
+    total = np.zeros((texels, texels))
+    for k in range(samples):
+        total += counts[k]
+        out[k] = total / (block * block)
+    return out
 
 
 def reach(patch: GrassPatch) -> float:
@@ -123,17 +175,30 @@ def reach(patch: GrassPatch) -> float:
     return float((area * middle).sum() / max(area.sum(), 1e-12))
 
 
-def _outlines(patch: GrassPatch) -> tuple[np.ndarray, np.ndarray]:
-    """Each blade's outline (blades, 2 · rows, 3) — up its left edge, down its right — as the
-    blade texture's mask narrows its strip, and its threshold."""
+def _outlines(patch: GrassPatch, between: int = OUTLINE_STEPS) -> tuple[np.ndarray, np.ndarray]:
+    """Each blade's outline (blades, 2 · rows, 3) — up its left edge, down its right — as its
+    strip is drawn (straight between the patch's rows) and the blade texture's mask narrows it
+    (blade_fill, which is not straight between rows: `between` steps per row), and its
+    threshold."""
     rows = patch.params.subdivisions + 1
     v = patch.vertices.reshape(-1, rows, 2)
     if not len(v):
-        return np.zeros((0, 2 * rows, 3)), np.zeros(0)
-    left = v["position"][:, :, 0].astype(np.float64)
-    right = v["position"][:, :, 1].astype(np.float64)
+        return np.zeros((0, 2 * ((rows - 1) * between + 1), 3)), np.zeros(0)
+    t = np.linspace(0.0, rows - 1.0, (rows - 1) * between + 1)
+    lo = np.minimum(t.astype(np.int64), rows - 2) if rows > 1 else np.zeros(t.size, np.int64)
+    share = (t - lo)[None, :, None]
+    hi = np.minimum(lo + 1, rows - 1)
+
+    def along(values: np.ndarray) -> np.ndarray:  # (blades, rows, ...) at the steps
+        values = values.astype(np.float64)
+        if values.ndim == 2:
+            return values[:, lo] + (values[:, hi] - values[:, lo]) * share[..., 0]
+        return values[:, lo] + (values[:, hi] - values[:, lo]) * share
+
+    left = along(v["position"][:, :, 0])
+    right = along(v["position"][:, :, 1])
     centre = 0.5 * (left + right)
-    fill = blade_fill(v["uv"][:, :, 0, 1].astype(np.float64))[..., None]
+    fill = blade_fill(along(v["uv"][:, :, 0, 1]))[..., None]
     left = centre + (left - centre) * fill
     right = centre + (right - centre) * fill
     outline = np.concatenate([left, right[:, ::-1]], axis=1)

@@ -10,7 +10,6 @@ import numpy as np
 
 from core.ground_mesh import GROUND_CHUNKS, chunked_mesh
 from core.lighting import Lighting
-from core.shadows import SAMPLES
 from render.design_maps import DesignMapTextures
 from render.shaders import load_program
 from render.uniforms import SINK_UNIT, FrameUniforms
@@ -71,7 +70,9 @@ class GroundRenderer:
         self.under_grass = tuple(0.55 * c for c in (0.30, 0.30, 0.12))
         # where no blades cast shadows, what they would take (render/shadows.py); None: off
         self.shadows: GroundShadows | None = None
-        self._shadow_table: moderngl.Texture | None = None
+        # the shadows' fields as texture layers, and the fields they were made from
+        self._shadow_field: moderngl.TextureArray | None = None
+        self._field_of: tuple = ()
 
     def _mesh(self, quads: tuple[int, int]) -> tuple[moderngl.VertexArray, np.ndarray]:
         if quads not in self.meshes:
@@ -129,6 +130,27 @@ class GroundRenderer:
                 total = int(firsts[last] + counts[last] - firsts[first])
                 vao.render(moderngl.TRIANGLES, vertices=total, first=int(firsts[first]))
 
+    def _field_texture(self, shadows: GroundShadows) -> moderngl.TextureArray:
+        """The shadows' fields as a mipmapped texture array, uploaded when they change (a new
+        sun or patch): a mip level's texel holds the mean of the texels it covers, and the last
+        level the cell's mean."""
+        same = len(shadows.fields) == len(self._field_of) and all(
+            a is b for a, b in zip(shadows.fields, self._field_of, strict=False)
+        )
+        if same and self._shadow_field is not None:
+            return self._shadow_field
+        layers = shadows.layers().astype(np.float16)
+        size = (layers.shape[2], layers.shape[1], layers.shape[0])
+        if self._shadow_field is None or self._shadow_field.size != size:
+            if self._shadow_field is not None:
+                self._shadow_field.release()
+            self._shadow_field = self.ctx.texture_array(size, 1, dtype="f2")
+            self._shadow_field.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+        self._shadow_field.write(layers.tobytes())
+        self._shadow_field.build_mipmaps()
+        self._field_of = shadows.fields
+        return self._shadow_field
+
     def soil_uniforms(self, light: Lighting) -> dict:
         """shaders/_soil.glsl's uniforms: the ground's colour here and under blade shadows."""
         return {
@@ -155,11 +177,7 @@ class GroundRenderer:
         for name, value in self.soil_uniforms(frame.light).items():
             p[name].value = value
         if self.shadows is not None:
-            if self._shadow_table is None:
-                size = (SAMPLES * MAX_TYPES, 1)
-                self._shadow_table = self.ctx.texture(size, 1, dtype="f4")
-                self._shadow_table.filter = (moderngl.LINEAR, moderngl.LINEAR)
-            self.shadows.apply(p, self._shadow_table)
+            self.shadows.apply(p, self._field_texture(self.shadows))
         self.ctx.enable(moderngl.DEPTH_TEST)
         # pushed back a little in depth: grass lying on it (the image-based quads, the volume's
         # floor) must win over the soil even far away, where depth precision is coarse
@@ -175,8 +193,8 @@ class GroundRenderer:
 
     def release(self) -> None:
         self._release_mesh()
-        if self._shadow_table is not None:
-            self._shadow_table.release()
+        if self._shadow_field is not None:
+            self._shadow_field.release()
         for vao in self._plane.values():
             vao.release()
         self.vbo.release()

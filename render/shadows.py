@@ -1,8 +1,7 @@
 """Blade shadows on the ground (core/shadows.py, Papavasiliou 3.6): the blades of the geometry
 level drawn a second time onto the ground along the sun (shaders/geometry.glsl, SHADOW), and
-the ground beyond them darkened by what the blades' shadows take there on average
-(shaders/ground.glsl, SHADOWS), each grass type's share of shadowed ground measured from its
-patch for the sun of the frame."""
+the ground beyond them darkened where the blades' shadows would fall (shaders/ground.glsl,
+SHADOWS), from each grass type's field of its patch's shadows for the sun of the frame."""
 
 from __future__ import annotations
 
@@ -15,7 +14,7 @@ import numpy as np
 
 from core.lod import NO_FADE
 from core.patch import GrassPatch
-from core.shadows import SAMPLES, cover, reach
+from core.shadows import STRETCHES, field, reach
 from render.ground import MAX_TYPES
 from render.uniforms import SHADOW_UNIT, set_uniforms
 
@@ -23,18 +22,19 @@ if TYPE_CHECKING:
     from render.frame import FramePipeline
     from render.uniforms import FrameUniforms
 
-# per patch, the last few suns' cover (a drag of the sun dial asks for one after another)
-_covers: weakref.WeakKeyDictionary[GrassPatch, dict] = weakref.WeakKeyDictionary()
+# per patch, the last few suns' fields (a drag of the sun dial asks for one after another)
+_fields: weakref.WeakKeyDictionary[GrassPatch, dict] = weakref.WeakKeyDictionary()
 
 
-def patch_cover(patch: GrassPatch, sun: np.ndarray, mirrored: bool) -> np.ndarray:
-    """core/shadows.py cover, kept for the patch and sun."""
-    kept = _covers.setdefault(patch, {})
-    key = (tuple(round(float(v), 6) for v in sun), mirrored)
+def patch_field(patch: GrassPatch, sun: np.ndarray, mirrored: bool, uneven: bool) -> np.ndarray:
+    """core/shadows.py field, kept for the patch and sun: on `uneven` ground at STRETCHES,
+    else on level ground alone."""
+    kept = _fields.setdefault(patch, {})
+    key = (tuple(round(float(v), 6) for v in sun), mirrored, uneven)
     if key not in kept:
         if len(kept) >= 8:
             kept.pop(next(iter(kept)))
-        kept[key] = cover(patch, sun, mirrored)
+        kept[key] = field(patch, sun, mirrored, STRETCHES if uneven else (1.0,))
     return kept[key]
 
 
@@ -52,7 +52,7 @@ def patch_reach(patch: GrassPatch) -> float:
 class GroundShadows:
     """shaders/ground.glsl's SHADOWS uniforms for one view."""
 
-    cover: np.ndarray  # (types, SAMPLES)
+    fields: tuple[np.ndarray, ...]  # per type, core/shadows.py field
     reach: tuple[float, ...]  # core/shadows.py reach per type
     channels: tuple[int, ...]
     spans: tuple[tuple[float, float], ...]  # where each type's geometry draws blades
@@ -60,21 +60,25 @@ class GroundShadows:
     strength: float
     density: float
 
-    def apply(self, program: moderngl.Program, table: moderngl.Texture) -> None:
-        """Set the uniforms; `table` (MAX_TYPES · SAMPLES × 1, one float) takes each type's
-        cover on level ground as −ln(1 − cover): a union of shadows dropped at random covers
-        1 − exp(−λ · area), and the ground scales λ · area with the shadows' length."""
+    def layers(self) -> np.ndarray:
+        """The fields one after the other as a texture array's layers (FIELD × FIELD each):
+        per type, mirror state and stretch, its densities."""
+        texels = self.fields[0].shape[-1]
+        return np.concatenate([f.reshape(-1, texels, texels) for f in self.fields])
+
+    def apply(self, program: moderngl.Program, field: moderngl.TextureArray) -> None:
+        """Set the uniforms; `field` holds `layers()` with their mipmaps."""
         n = len(self.channels)
-        blocks = np.zeros((MAX_TYPES, SAMPLES), np.float32)
-        blocks[:n] = -np.log1p(-np.minimum(self.cover[:n], 0.999))
-        table.write(blocks.tobytes())
-        table.use(SHADOW_UNIT)
+        field.use(SHADOW_UNIT)
         spans = [(a, min(b, 1e30), 0.0, 0.0) for a, b in self.spans]
         spans += [(1.0, 0.0, 0.0, 0.0)] * (MAX_TYPES - n)  # none: no blades anywhere
         fades = list(self.fades) + [NO_FADE] * (MAX_TYPES - n)
+        states, stretches = self.fields[0].shape[:2]
         values = {
             "u_shadow_types": n,
-            "u_shadow_table": SHADOW_UNIT,
+            "u_shadow_field": SHADOW_UNIT,
+            "u_shadow_states": states,
+            "u_shadow_stretches": stretches,
             "u_shadow_channel": np.eye(4, dtype=np.float32)[
                 (list(self.channels) + [0] * 4)[:4]
             ].tobytes(),
@@ -95,20 +99,21 @@ def ground_shadows(p: FramePipeline, frame: FrameUniforms, cells: list) -> Groun
     if not light.blade_shadows:
         return None
     sun = light.sun_direction
-    covers, reaches, channels, spans, fades = [], [], [], [], []
+    fields, reaches, channels, spans, fades = [], [], [], [], []
+    uneven = frame.height_scale > 0
     for grass, view in list(zip(p.grass_types, cells, strict=True))[:MAX_TYPES]:
         patch = grass.patch
         if patch is None:
             continue
-        covers.append(patch_cover(patch, sun, frame.tiling))
+        fields.append(patch_field(patch, sun, frame.tiling, uneven))
         reaches.append(patch_reach(patch))
         channels.append(grass.density_channel)
         spans.append(view.blades if view.blades is not None else (1.0, 0.0))
         fades.append(view.fades.get(("geometry", 0), NO_FADE))
-    if not covers:
+    if not fields:
         return None
     return GroundShadows(
-        np.array(covers), tuple(reaches), tuple(channels), tuple(spans), tuple(fades),
+        tuple(fields), tuple(reaches), tuple(channels), tuple(spans), tuple(fades),
         light.shadow_strength, float(p.density),
     )  # fmt: skip
 

@@ -71,14 +71,8 @@ void main() {
     // the blade's own (its vertices' rows), so a blade keeps its samples at every segment level
     uint salt = uint(gl_VertexID) / uint(2.0 * u_subdivisions + 2.0);
 #endif
-#if defined SHADOW
-    // one for every shadow: overlapping shadows, of any cells, take the same samples of a
-    // pixel and darken it once, as the union of shadows the far ground takes (core/shadows.py)
-    v_salt = 0u;
-#else
     v_salt = salt * 747796405u
              + (floatBitsToUint(in_origin.x) ^ (floatBitsToUint(in_origin.y) * 2891336453u));
-#endif
     vec3 s = vec3(in_mirror.x, 1.0, in_mirror.y);
     vec3 local = (in_position - vec3(0.5, 0.0, 0.5)) * s + vec3(0.5, 0.0, 0.5);  // eq. 6.7
     vec2 root = (in_root - 0.5) * in_mirror + 0.5;

@@ -64,23 +64,27 @@ out vec4 f_color;
 
 #if defined SHADOW
 // The blades' shadows (core/shadows.py; Papavasiliou 3.6): the blade's outline moved onto the
-// ground along the sun (_blade_vertex.glsl), in the ground's colour without the sun, covering
-// u_shadow_strength of the pixel's samples. Every shadow has the same salt: shadows pick the
-// same samples of a pixel, and where they overlap the ground is shadowed once.
+// ground along the sun (_blade_vertex.glsl), in the ground's colour without the sun. A shadow
+// covers the samples its blade's texel would (its alpha, of the blade's own samples: shadows
+// of blades side by side within a pixel add up as the blades do) that lie in the pixel's
+// u_shadow_strength share of samples, one share for every shadow (salt 0): where shadows
+// overlap the ground loses that share once.
 #include "_design.glsl"
 #include "_soil.glsl"
 uniform float u_shadow_strength;
 
 void main() {
     vec4 tex = texture(u_blade, v_uv);
-    if (tex.a * v_opacity < u_alpha_ref) discard;
-    float cover = u_shadow_strength * v_opacity;
+    float alpha = tex.a * v_opacity;
+    if (alpha < u_alpha_ref) discard;
     if (gl_NumSamples <= 1) {  // no samples to choose from: the pixels themselves (screen door)
-        float xi = float(coverage_hash(uvec3(uvec2(gl_FragCoord.xy), v_salt)) & 0xFFFFu) / 65536.0;
-        if (xi >= cover) discard;
+        uvec2 pixel = uvec2(gl_FragCoord.xy);
+        float xi = float(coverage_hash(uvec3(pixel, v_salt)) & 0xFFFFu) / 65536.0;
+        float eta = float(coverage_hash(uvec3(pixel, 0u)) & 0xFFFFu) / 65536.0;
+        if (xi >= alpha || eta >= u_shadow_strength) discard;
     }
     f_color = vec4(soil(v_world, u_eye, 1.0, 0.0), 1.0);
-    gl_SampleMask[0] = coverage_mask(cover, v_salt);
+    gl_SampleMask[0] = coverage_mask(alpha, v_salt) & coverage_mask(u_shadow_strength, 0u);
 }
 #else
 void main() {

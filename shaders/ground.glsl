@@ -45,12 +45,15 @@ uniform float u_mesh;
 // density channel, the distances where its geometry level draws blades, (begin, end), and the
 // transitions' (e1, e2) in and out (core/lod.py fades). The geometry there casts the shadows of
 // the blades it keeps, those below w · density; the ground takes away the rest of what all the
-// blades would, 1 − (1 − s·cover(x)) / (1 − s·cover(w·x)) of the sun on average. The table
-// holds each type's −ln(1 − cover) on level ground at 17 densities, the types side by side
-// (render/shadows.py).
+// blades would, 1 − (1 − s·cover(x)) / (1 − s·cover(w·x)) of the sun. `cover` comes from the
+// type's field: where in a cell its blades' shadows fall, per mirror state of the tiling, per
+// length over level ground's (uneven terrain) and per density (17), layers of a texture array
+// whose mip levels average it, down to the cell's mean (render/shadows.py).
 #if defined SHADOWS
 uniform int u_shadow_types;
-uniform sampler2D u_shadow_table;
+uniform sampler2DArray u_shadow_field;
+uniform int u_shadow_states;     // 4: a field per mirror state of the tiling; 1: not mirrored
+uniform int u_shadow_stretches;  // 3: drawn at core/shadows.py STRETCHES; 1: level ground alone
 uniform vec4 u_shadow_channel[4];  // one-hot: the type's density channel
 uniform vec4 u_shadow_span[4];
 uniform vec4 u_shadow_fade[4];
@@ -68,34 +71,67 @@ float geometry_share(int type, float d) {
     return w;
 }
 
-// The share of the ground in the shadows of the type's blades below density x, the shadows
-// `k` times as long as on level ground: a union of shadows dropped at random covers
-// 1 − exp(−λ · area), each shadow's area grows with its length, and the table holds λ · area
-// on level ground (render/shadows.py)
-float shadow_cover(int type, float x, float k) {
-    float at = (clamp(x, 0.0, 1.0) * 16.0 + 0.5) / 17.0;
-    float depth = textureLod(u_shadow_table, vec2((float(type) + at) / 4.0, 0.5), 0.0).r;
-    return 1.0 - exp(-k * depth);
+// One field's share in shadow at `at` (the point in its cell), at mip level `lod`, for the
+// blades below density x: between the two densities it was drawn at
+float field_cover(float layer, vec2 at, float lod, float x) {
+    float s = clamp(x, 0.0, 1.0) * 16.0;
+    float j = min(floor(s), 15.0);
+    float a = textureLod(u_shadow_field, vec3(at, layer + j), lod).r;
+    float b = textureLod(u_shadow_field, vec3(at, layer + j + 1.0), lod).r;
+    return mix(a, b, s - j);
+}
+
+// The share of the ground at `at` in the shadows of the type's blades below density x, the
+// shadows `k` times as long as on level ground: between the fields drawn at the lengths
+// nearest k (0.5, 1, 2), and beyond them as a union of shadows dropped at random grows,
+// 1 − (1 − cover)^(k / length), the area of each shadow growing with its length
+float shadow_cover(int type, int state, vec2 at, float lod, float x, float k) {
+    float first = float((type * u_shadow_states + state) * u_shadow_stretches);
+    float c, drawn_at;
+    if (u_shadow_stretches == 1) {
+        c = field_cover(first * 17.0, at, lod, x);
+        drawn_at = 1.0;
+    } else {
+        float e = clamp(log2(max(k, 1e-6)) + 1.0, 0.0, 2.0);  // 0.5, 1, 2 at 0, 1, 2
+        float i = min(floor(e), 1.0);
+        float a = field_cover((first + i) * 17.0, at, lod, x);
+        float b = field_cover((first + i + 1.0) * 17.0, at, lod, x);
+        c = mix(a, b, e - i);
+        drawn_at = clamp(k, 0.5, 2.0);
+    }
+    return 1.0 - pow(max(1.0 - c, 0.0), max(k / drawn_at, 1e-3));
 }
 
 // The share of the sun the ground keeps where the blades' shadows are not drawn: at density x
-// all the blades' shadows on average, less those the geometry casts (the blades below w · x),
-// (1 − s·cover(x)) / (1 − s·cover(w·x)); `k` as shadow_cover's. The density is the one where
-// the shadows falling here stand: `reach` up the blades towards the sun (`towards`: the uv
-// offset per unit of height), so the bare ground beside grass gets the grass's shadows.
-float unshadowed(vec2 uv, float d, float k, vec2 towards) {
+// all the blades' shadows, less those the geometry casts (the blades below w · x),
+// (1 − s·cover(x)) / (1 − s·cover(w·x)); `k` as shadow_cover's; `cell` the point in cell units
+// and `lod` the fields' mip level there. The density is the one where the shadows falling
+// here stand: `reach` up the blades towards the sun (`towards`: the uv offset per unit of
+// height), so the bare ground beside grass gets the grass's shadows.
+float unshadowed(vec2 uv, float d, float k, vec2 towards, vec2 cell, float lod) {
+    vec2 s = u_shadow_states > 1 ? cell_mirror(floor(cell), vec2(1.0)) : vec2(1.0);
+    int state = (s.x < 0.0 ? 1 : 0) + (s.y < 0.0 ? 2 : 0);  // core/shadows.py MIRRORS
+    vec2 at = fract(cell);
     float sun = 1.0;
     for (int t = 0; t < u_shadow_types; ++t) {
         float w = geometry_share(t, d);
         if (w >= 1.0) continue;  // the geometry casts every blade's shadow here
-        vec2 at = uv + towards * (k * u_shadow_reach[t]);
-        vec4 density = textureLod(u_design, vec3(at, 0.0), 0.0) * u_shadow_density;
+        vec2 from = uv + towards * (k * u_shadow_reach[t]);
+        vec4 density = textureLod(u_design, vec3(from, 0.0), 0.0) * u_shadow_density;
         float x = clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0);
-        float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, x, k);
-        float drawn = w > 0.0 ? 1.0 - u_shadow_strength * shadow_cover(t, w * x, k) : 1.0;
+        float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, state, at, lod, x, k);
+        float drawn = w > 0.0
+            ? 1.0 - u_shadow_strength * shadow_cover(t, state, at, lod, w * x, k) : 1.0;
         sun *= all_of_them / max(drawn, 1e-3);
     }
     return sun;
+}
+
+// The fields' mip level at a point `cell` (cell units): a texel of level 0 is 1 / 64 of a cell
+// (core/shadows.py FIELD); from how the point moves across the pixel (outside any branch)
+float field_lod(vec2 cell) {
+    vec2 dx = dFdx(cell), dy = dFdy(cell);
+    return log2(max(sqrt(max(dot(dx, dx), dot(dy, dy))) * 64.0, 1e-6));
 }
 
 // How much longer a blade's shadow falls on the ground's slope than on level ground: a blade
@@ -119,8 +155,9 @@ vec2 shadow_source() {
     return sun.xz / sun.y / max(u_grass_rect.zw - u_grass_rect.xy, vec2(1e-6));
 }
 #else
-float unshadowed(vec2 uv, float d, float k, vec2 towards) { return 1.0; }
+float unshadowed(vec2 uv, float d, float k, vec2 towards, vec2 cell, float lod) { return 1.0; }
 float shadow_length(vec3 world) { return 1.0; }
+float field_lod(vec2 cell) { return 0.0; }
 vec2 shadow_source() { return vec2(0.0); }
 #endif
 
@@ -134,7 +171,8 @@ void main() {
     vec2 uv = soil_uv(p);
     float d = distance(u_eye.xz, p);
     float k = shadow_length(v_world);  // derivatives: outside any branch
-    float sun = inside > 0.0 ? unshadowed(uv, d, k, shadow_source()) : 1.0;
+    float lod = field_lod(p);  // world units are cell units
+    float sun = inside > 0.0 ? unshadowed(uv, d, k, shadow_source(), p, lod) : 1.0;
     f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 

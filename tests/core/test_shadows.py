@@ -10,7 +10,7 @@ import pytest
 from core.lighting import Lighting
 from core.params import PRESETS
 from core.patch import generate_patch
-from core.shadows import _outlines, cover, reach
+from core.shadows import MIRRORS, STRETCHES, _outlines, cover, field, reach
 
 
 def _sun(elevation: float, azimuth: float = 135.0) -> np.ndarray:
@@ -34,6 +34,52 @@ def test_one_blades_shadow_covers_the_area_of_its_outline_along_the_sun(elevatio
     area = _shoelace(ground)
     got = cover(patch, sun, mirrored=False, raster=1024)
     assert got[0] == 0.0 and got[-1] == pytest.approx(area, rel=0.08)
+
+
+@pytest.mark.parametrize("stretch", [0.5, 2.0])
+def test_a_slope_stretches_a_blades_whole_shadow_along_the_sun(stretch):
+    """On a slope the ground's plane maps a blade's shadow by a map of determinant k along the
+    sun, its footprint too: a lone blade's shadow in the field drawn k times as long covers k
+    times the ground (a tilted blade, so its footprint counts)."""
+    params = PRESETS[sorted(PRESETS)[0]].replace(blade_count=1, tilt_min=30.0, tilt_max=30.0)
+    patch = generate_patch(params)
+    f = field(patch, _sun(50.0), mirrored=False, stretches=(1.0, stretch), raster=1024)
+    level, slope = f[0, 0, -1].mean(), f[0, 1, -1].mean()
+    assert level > 0.0 and slope == pytest.approx(stretch * level, rel=0.05)
+
+
+def test_the_field_says_where_the_shadows_fall_and_its_mean_is_the_cover():
+    """Per mirror state and density the field's mean over the cell is `cover`'s share; each
+    mirror state's field is the first one's mirrored (the blades mirrored, the sun not: the
+    sun along a diagonal, so that the mirrored shadows fall elsewhere)."""
+    patch = generate_patch(PRESETS[sorted(PRESETS)[0]].replace(blade_count=300))
+    sun = _sun(40.0, azimuth=135.0)
+    f = field(patch, sun, stretches=STRETCHES)
+    assert f.shape[:3] == (len(MIRRORS), len(STRETCHES), 17)
+    assert np.allclose(f[:, 1].mean(axis=(0, 2, 3)), cover(patch, sun), atol=1e-6)
+    assert np.all(np.diff(f, axis=2) >= 0)  # more blades, more shadow, everywhere
+    # the field is not one value spread over the cell: the shadows fall in places
+    assert f[0, 1, -1].std() > 0.1
+    # two mirror states put them in different places
+    assert np.abs(f[0, 1, -1] - f[1, 1, -1]).mean() > 0.1
+
+
+def test_a_blades_outline_follows_its_masks_curve_between_the_strips_rows():
+    """The blade texture's mask narrows the blade along a curve, not straight from row to row:
+    the outline, sampled between the rows, covers more than its rows alone say (the mask
+    bulges), and about as much as sampled twice as finely."""
+    patch = generate_patch(PRESETS[sorted(PRESETS)[0]].replace(blade_count=50, subdivisions=3))
+
+    def area(steps: int) -> float:
+        outline, _ = _outlines(patch, steps)
+        n = outline.shape[1] // 2
+        left, right = outline[:, :n], outline[:, n:][:, ::-1]
+        width = np.linalg.norm(right - left, axis=-1)
+        run = np.linalg.norm(np.diff(0.5 * (left + right), axis=1), axis=-1)
+        return float((0.5 * (width[:, 1:] + width[:, :-1]) * run).sum())
+
+    assert area(4) > 1.02 * area(1)
+    assert area(8) == pytest.approx(area(4), rel=0.01)
 
 
 def test_the_lower_the_sun_the_more_ground_lies_in_shadow_and_density_adds_to_it():

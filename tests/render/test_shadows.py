@@ -110,6 +110,25 @@ def test_the_shadows_mean_darkening_goes_on_past_the_blades(headless, scene, cam
         assert abs(got - want) < 0.2 * want, f"{scene} {side}: {got:.2f} against {want:.2f}"
 
 
+def _ramp(sign: float) -> tuple:
+    """A patch grid at density 0.3 on a 31° slope, rising towards the sun (sign +1: it faces
+    the sun) or away from it (−1), or level (0), and a camera above its middle."""
+    doc = get_scene("patch-grid").document()
+    doc.density = 0.3
+    sun = doc.light.sun_direction
+    way = sun[[0, 2]] / np.linalg.norm(sun[[0, 2]])
+    w, h = doc.maps.size
+    v, u = np.mgrid[0:h, 0:w]
+    along = ((u + 0.5) / w - 0.5) * way[0] + ((v + 0.5) / h - 0.5) * way[1]
+    columns = doc.terrain_spec.columns
+    if sign:
+        doc.maps.write("height", 0, 0, np.clip(0.5 + sign * along, 0.0, 1.0).astype(np.float32))
+        doc.terrain_spec = dataclasses.replace(doc.terrain_spec, height_scale=0.6 * columns)
+    x0, z0, x1, z1 = doc.terrain.rect
+    middle = ((x0 + x1) / 2, 0.3 * columns if sign else 0.0, (z0 + z1) / 2)  # half way up
+    return doc, Camera(target=middle, yaw=0.0, pitch=89.0, distance=3.0)
+
+
 def test_the_far_ground_darkens_a_slope_as_the_blades_shadows_do(headless):
     """The blades stand upright on a slope and their shadows fall along the sun onto it: on a
     slope turned away from the sun they reach farther across the ground than on one turned
@@ -118,19 +137,7 @@ def test_the_far_ground_darkens_a_slope_as_the_blades_shadows_do(headless):
     would lose the same on both."""
     out = {}
     for sign in (1.0, -1.0):
-        doc = get_scene("patch-grid").document()
-        doc.density = 0.3
-        sun = doc.light.sun_direction
-        way = sun[[0, 2]] / np.linalg.norm(sun[[0, 2]])
-        w, h = doc.maps.size
-        v, u = np.mgrid[0:h, 0:w]
-        along = ((u + 0.5) / w - 0.5) * way[0] + ((v + 0.5) / h - 0.5) * way[1]
-        doc.maps.write("height", 0, 0, np.clip(0.5 + sign * along, 0.0, 1.0).astype(np.float32))
-        columns = doc.terrain_spec.columns
-        doc.terrain_spec = dataclasses.replace(doc.terrain_spec, height_scale=0.6 * columns)
-        x0, z0, x1, z1 = doc.terrain.rect
-        middle = ((x0 + x1) / 2, 0.3 * columns, (z0 + z1) / 2)  # half way up: 0.5 · scale
-        camera = Camera(target=middle, yaw=0.0, pitch=89.0, distance=3.0)
+        doc, camera = _ramp(sign)
         for mode in MODES:
             out[sign, mode] = _darkening(headless(doc, mode=mode), doc, camera).mean()
     steep, gentle = sorted((1.0, -1.0), key=lambda s: -out[s, "geometry"])
@@ -138,6 +145,39 @@ def test_the_far_ground_darkens_a_slope_as_the_blades_shadows_do(headless):
     for sign in (steep, gentle):
         want, got = out[sign, "geometry"], out[sign, "volume"]
         assert abs(got - want) < want / 3, f"slope {sign:+.0f}: {got:.2f} against {want:.2f}"
+
+
+@pytest.mark.parametrize("sign", [0.0, 1.0, -1.0])
+def test_on_bare_ground_the_far_ground_loses_what_the_blades_shadows_take(
+    headless, monkeypatch, sign
+):
+    """The grass itself not drawn, only the shadows on the ground: the blades' shadows (as
+    much of a pixel as their blades cover, the blade texture's alpha) and the volume's ground
+    (the patch's field, its shadows stretched along the sun on a slope) darken it alike, on
+    level ground and on slopes turned towards the sun and away from it (within a tenth)."""
+    import render.geometry
+    import render.volume
+
+    monkeypatch.setattr(render.geometry.GeometryRenderer, "draw", lambda self: None)
+    monkeypatch.setattr(render.volume.VolumeRenderer, "draw", lambda self: None)
+    doc, camera = _ramp(sign)
+    got = {mode: _darkening(headless(doc, mode=mode), doc, camera).mean() for mode in MODES}
+    assert got["geometry"] > 3.0
+    assert got["volume"] == pytest.approx(got["geometry"], rel=0.1), got
+
+
+def test_the_far_grounds_shadows_fall_where_the_blades_shadows_fall(headless):
+    """Sparse clustered grass (density 0.3) seen from above: the volume's ground darkens where
+    the blades' shadows fall in the all-geometry frame (its field per mirror state of the
+    tiling), not evenly over the cells: their darkening's 8 × 8 pixel blocks correlate."""
+    doc = get_scene("bench").document()
+    doc.density = 0.3
+    camera = Camera.from_eye_target((10.5, 3.0, 12.0), (12.5, 0.0, 14.0), fov_y=40.0)
+    dark = {mode: _darkening(headless(doc, mode=mode), doc, camera) for mode in MODES}
+    h, w = dark["geometry"].shape
+    blocks = [d[: h // 8 * 8, : w // 8 * 8].reshape(h // 8, 8, w // 8, 8).mean(axis=(1, 3))
+              for d in dark.values()]  # fmt: skip
+    assert np.corrcoef(blocks[0].ravel(), blocks[1].ravel())[0, 1] > 0.7
 
 
 def test_beyond_the_blades_the_bare_ground_beside_grass_gets_its_shadows(headless):
