@@ -133,18 +133,18 @@ class GroundRenderer:
     def _field_texture(self, shadows: GroundShadows) -> moderngl.TextureArray:
         """The shadows' fields as a mipmapped texture array, uploaded when they change (a new
         sun or patch): a mip level's texel holds the mean of the texels it covers, and the last
-        level the cell's mean."""
+        level the cell's mean. Eight bits a share: the texture filtering's fast path."""
         same = len(shadows.fields) == len(self._field_of) and all(
             a is b for a, b in zip(shadows.fields, self._field_of, strict=False)
         )
         if same and self._shadow_field is not None:
             return self._shadow_field
-        layers = shadows.layers().astype(np.float16)
+        layers = shadows.layers()
         size = (layers.shape[2], layers.shape[1], layers.shape[0])
         if self._shadow_field is None or self._shadow_field.size != size:
             if self._shadow_field is not None:
                 self._shadow_field.release()
-            self._shadow_field = self.ctx.texture_array(size, 1, dtype="f2")
+            self._shadow_field = self.ctx.texture_array(size, 4)
             self._shadow_field.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
         self._shadow_field.write(layers.tobytes())
         self._shadow_field.build_mipmaps()

@@ -61,10 +61,22 @@ class GroundShadows:
     density: float
 
     def layers(self) -> np.ndarray:
-        """The fields one after the other as a texture array's layers (FIELD × FIELD each):
-        per type, mirror state and stretch, its densities."""
-        texels = self.fields[0].shape[-1]
-        return np.concatenate([f.reshape(-1, texels, texels) for f in self.fields])
+        """The fields one after the other as a texture array's RGBA8 layers (FIELD × FIELD
+        each), so that one read gives what the ground interpolates between: per type, mirror
+        state, pair of neighbouring stretches (a, b) and density step j, the shares at
+        (x_j, a), (x_j+1, a), (x_j, b), (x_j+1, b)."""
+        out = []
+        for f in self.fields:
+            states, stretches = f.shape[:2]
+            pairs = [(a, a + 1) for a in range(stretches - 1)] or [(0, 0)]
+            for state in range(states):
+                for a, b in pairs:
+                    step = np.stack(
+                        [f[state, a, :-1], f[state, a, 1:], f[state, b, :-1], f[state, b, 1:]],
+                        axis=-1,
+                    )  # (samples − 1, rows, cols, 4)
+                    out.append(step)
+        return np.round(np.clip(np.concatenate(out), 0.0, 1.0) * 255.0).astype(np.uint8)
 
     def apply(self, program: moderngl.Program, field: moderngl.TextureArray) -> None:
         """Set the uniforms; `field` holds `layers()` with their mipmaps."""

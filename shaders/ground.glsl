@@ -47,7 +47,7 @@ uniform float u_mesh;
 // the blades it keeps, those below w · density; the ground takes away the rest of what all the
 // blades would, 1 − (1 − s·cover(x)) / (1 − s·cover(w·x)) of the sun. `cover` comes from the
 // type's field: where in a cell its blades' shadows fall, per mirror state of the tiling, per
-// length over level ground's (uneven terrain) and per density (17), layers of a texture array
+// length over level ground's (uneven terrain) and per density, layers of a texture array
 // whose mip levels average it, down to the cell's mean (render/shadows.py).
 #if defined SHADOWS
 uniform int u_shadow_types;
@@ -71,34 +71,26 @@ float geometry_share(int type, float d) {
     return w;
 }
 
-// One field's share in shadow at `at` (the point in its cell), at mip level `lod`, for the
-// blades below density x: between the two densities it was drawn at
-float field_cover(float layer, vec2 at, float lod, float x) {
-    float s = clamp(x, 0.0, 1.0) * 16.0;
-    float j = min(floor(s), 15.0);
-    float a = textureLod(u_shadow_field, vec3(at, layer + j), lod).r;
-    float b = textureLod(u_shadow_field, vec3(at, layer + j + 1.0), lod).r;
-    return mix(a, b, s - j);
-}
-
-// The share of the ground at `at` in the shadows of the type's blades below density x, the
-// shadows `k` times as long as on level ground: between the fields drawn at the lengths
-// nearest k (0.5, 1, 2), and beyond them as a union of shadows dropped at random grows,
-// 1 − (1 − cover)^(k / length), the area of each shadow growing with its length
+// The share of the ground at `at` (the point in its cell) in the shadows of the type's blades
+// below density x, the shadows `k` times as long as on level ground, at the fields' mip level
+// `lod`. One read gives the shares at the densities (x · 16 rounded down, and up) and the two
+// lengths the field was drawn at nearest k (render/shadows.py layers; 0.5, 1, 2 on uneven
+// terrain), interpolated; beyond them as a union of shadows dropped at random grows,
+// 1 − (1 − cover)^(k / length), the area of each shadow growing with its length.
 float shadow_cover(int type, int state, vec2 at, float lod, float x, float k) {
-    float first = float((type * u_shadow_states + state) * u_shadow_stretches);
-    float c, drawn_at;
-    if (u_shadow_stretches == 1) {
-        c = field_cover(first * 17.0, at, lod, x);
-        drawn_at = 1.0;
-    } else {
-        float e = clamp(log2(max(k, 1e-6)) + 1.0, 0.0, 2.0);  // 0.5, 1, 2 at 0, 1, 2
-        float i = min(floor(e), 1.0);
-        float a = field_cover((first + i) * 17.0, at, lod, x);
-        float b = field_cover((first + i + 1.0) * 17.0, at, lod, x);
-        c = mix(a, b, e - i);
+    float s = clamp(x, 0.0, 1.0) * 16.0;
+    if (s <= 0.0) return 0.0;
+    float j = min(floor(s), 15.0);
+    int pairs = max(u_shadow_stretches - 1, 1);
+    float e = 0.0, drawn_at = 1.0;
+    if (u_shadow_stretches > 1) {
+        e = clamp(log2(max(k, 1e-6)) + 1.0, 0.0, 2.0);  // 0.5, 1, 2 at 0, 1, 2
         drawn_at = clamp(k, 0.5, 2.0);
     }
+    float pair = min(floor(e), float(pairs - 1));
+    float layer = (float((type * u_shadow_states + state) * pairs) + pair) * 16.0 + j;
+    vec4 t = textureLod(u_shadow_field, vec3(at, layer), lod);
+    float c = mix(mix(t.x, t.y, s - j), mix(t.z, t.w, s - j), e - pair);
     return 1.0 - pow(max(1.0 - c, 0.0), max(k / drawn_at, 1e-3));
 }
 
@@ -131,7 +123,7 @@ float unshadowed(vec2 uv, float d, float k, vec2 towards, vec2 cell, float lod) 
 // (core/shadows.py FIELD); from how the point moves across the pixel (outside any branch)
 float field_lod(vec2 cell) {
     vec2 dx = dFdx(cell), dy = dFdy(cell);
-    return log2(max(sqrt(max(dot(dx, dx), dot(dy, dy))) * 64.0, 1e-6));
+    return log2(max(sqrt(max(dot(dx, dx), dot(dy, dy))) * 32.0, 1e-6));
 }
 
 // How much longer a blade's shadow falls on the ground's slope than on level ground: a blade
