@@ -31,7 +31,7 @@ from core.patch import GrassPatch, blade_fill
 SAMPLES = 17  # densities 0, 1/16 … 1 at which cover is given
 RASTER = 384  # texels across a cell where the shadows are drawn
 OUTLINE_STEPS = 4  # points of a blade's outline per row of its strip (`_outlines`)
-FIELD = 32  # texels across a cell of the field of where they fall (RASTER / 6 each)
+FIELD = 32  # texels across a cell of the field of where they fall (RASTER / 12 each)
 # the shadows' lengths over level ground's at which the field is drawn on uneven terrain; a
 # slope facing the sun shortens them, one facing away lengthens them (shaders/ground.glsl)
 STRETCHES = (0.5, 1.0, 2.0)
