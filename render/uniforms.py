@@ -19,7 +19,7 @@ TILING_UNIT = 5  # the aperiodic tiling's noise map (render/tiling.py)
 WIND_UNIT = 13  # the wind's noise map (render/wind.py)
 SINK_UNIT = 14  # how far the ground mesh's vertices sink (render/ground.py)
 FAR_DESIGN_UNIT = 15  # the colour map, mipmapped (render/design_maps.py)
-SHADOW_UNIT = 16  # the blades' shadow cover per grass type (render/shadows.py)
+SHADOW_UNIT = 16  # the blades' shadow fields, every grass type's (render/shadows.py)
 
 
 @dataclass
