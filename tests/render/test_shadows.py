@@ -222,3 +222,17 @@ def test_no_pixel_of_hilly_ground_goes_black_under_the_shadows(headless):
     after = renderer.render(camera, (960, 540), measure=False)[0].astype(float).sum(axis=-1)
     lit = before > 60.0
     assert (after[lit] / before[lit]).min() > 0.3
+
+
+def test_a_draft_answers_a_new_sun_with_the_level_field_alone(headless):
+    """On uneven terrain the full frame's ground reads the shadows drawn at three lengths (a
+    slope stretches them); a draft, which answers an edit first, draws only level ground's."""
+    doc = get_scene("meadow").document()
+    _lit(doc, True)
+    renderer = headless(doc)
+    camera = doc.camera("default")
+    stretches = {}
+    for draft in (True, False):
+        renderer.render(camera, (160, 90), measure=False, half_resolution=draft)
+        stretches[draft] = {f.shape[1] for f in renderer.pipeline.ground.shadows.fields}
+    assert stretches == {True: {1}, False: {3}}
