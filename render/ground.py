@@ -133,7 +133,7 @@ class GroundRenderer:
     def _field_texture(self, shadows: GroundShadows) -> moderngl.TextureArray:
         """The shadows' fields as a mipmapped texture array, uploaded when they change (a new
         sun or patch): a mip level's texel holds the mean of the texels it covers, and the last
-        level the cell's mean. Eight bits a share: the texture filtering's fast path."""
+        level the cell's mean. Eight bits a share: a 255th of the sun's share at most."""
         same = len(shadows.fields) == len(self._field_of) and all(
             a is b for a, b in zip(shadows.fields, self._field_of, strict=False)
         )
