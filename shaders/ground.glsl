@@ -119,7 +119,7 @@ float unshadowed(vec2 uv, float d, float k, vec2 towards, vec2 cell, float lod) 
     return sun;
 }
 
-// The fields' mip level at a point `cell` (cell units): a texel of level 0 is 1 / 64 of a cell
+// The fields' mip level at a point `cell` (cell units): a texel of level 0 is 1 / 32 of a cell
 // (core/shadows.py FIELD); from how the point moves across the pixel (outside any branch)
 float field_lod(vec2 cell) {
     vec2 dx = dFdx(cell), dy = dFdy(cell);
