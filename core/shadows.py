@@ -63,7 +63,7 @@ def field(
 ) -> np.ndarray:
     """Where in a cell the shadows fall: (states, stretches, samples, texels, texels) float32,
     per mirror state of the aperiodic tiling (MIRRORS; the first alone if not `mirrored`), per
-    length of the shadows over level ground's (`stretches`: a slope lengthens them), per
+    length of the shadows over level ground's (`stretches`: a slope changes it), per
     density x = 0 … 1 as in `cover`, the share of each texel of the cell (rows along z, columns
     along x) in the shadow of the blades below x. Its mean over the texels is `cover`."""
     outlines, thresholds = _outlines(patch)

@@ -71,15 +71,16 @@ float geometry_share(int type, float d) {
     return w;
 }
 
-// The share of the ground at `at` (the point in its cell) in the shadows of the type's blades
-// below density x, the shadows `k` times as long as on level ground, at the fields' mip level
-// `lod`. One read gives the shares at the densities (x · 16 rounded down, and up) and the two
+// The share of the ground at `cell` (the point in cell units; the field repeats) in the
+// shadows of the type's blades below density x, the shadows `k` times as long as on level
+// ground. One read gives the shares at the densities (x · 16 rounded down, and up) and the two
 // lengths the field was drawn at nearest k (render/shadows.py layers; 0.5, 1, 2 on uneven
 // terrain), interpolated; beyond them as a union of shadows dropped at random grows,
-// 1 − (1 − cover)^(k / length), the area of each shadow growing with its length.
-float shadow_cover(int type, int state, vec2 at, float lod, float x, float k) {
+// 1 − (1 − cover)^(k / length), the area of each shadow growing with its length. `implicit`:
+// the mip level from the pixel quad's own derivatives, for a read outside any branch (the
+// cheaper read on llvmpipe, which takes an explicit level per pixel), else `lod`.
+float shadow_cover(int type, int state, vec2 cell, float lod, float x, float k, bool implicit) {
     float s = clamp(x, 0.0, 1.0) * 16.0;
-    if (s <= 0.0) return 0.0;
     float j = min(floor(s), 15.0);
     int pairs = max(u_shadow_stretches - 1, 1);
     float e = 0.0, drawn_at = 1.0;
@@ -89,31 +90,34 @@ float shadow_cover(int type, int state, vec2 at, float lod, float x, float k) {
     }
     float pair = min(floor(e), float(pairs - 1));
     float layer = (float((type * u_shadow_states + state) * pairs) + pair) * 16.0 + j;
-    vec4 t = textureLod(u_shadow_field, vec3(at, layer), lod);
+    vec4 t = implicit ? texture(u_shadow_field, vec3(cell, layer))
+                      : textureLod(u_shadow_field, vec3(cell, layer), lod);
     float c = mix(mix(t.x, t.y, s - j), mix(t.z, t.w, s - j), e - pair);
+    if (s <= 0.0) return 0.0;
     return 1.0 - pow(max(1.0 - c, 0.0), max(k / drawn_at, 1e-3));
 }
 
 // The share of the sun the ground keeps where the blades' shadows are not drawn: at density x
 // all the blades' shadows, less those the geometry casts (the blades below w · x),
 // (1 − s·cover(x)) / (1 − s·cover(w·x)); `k` as shadow_cover's; `cell` the point in cell units
-// and `lod` the fields' mip level there. The density is the one where the shadows falling
-// here stand: `reach` up the blades towards the sun (`towards`: the uv offset per unit of
-// height), so the bare ground beside grass gets the grass's shadows.
+// and `lod` the fields' mip level there (the first read comes before any branch). The density
+// is the one where the shadows falling here stand: `reach` up the blades towards the sun
+// (`towards`: the uv offset per unit of height), so the bare ground beside grass gets the
+// grass's shadows.
 float unshadowed(vec2 uv, float d, float k, vec2 towards, vec2 cell, float lod) {
     vec2 s = u_shadow_states > 1 ? cell_mirror(floor(cell), vec2(1.0)) : vec2(1.0);
     int state = (s.x < 0.0 ? 1 : 0) + (s.y < 0.0 ? 2 : 0);  // core/shadows.py MIRRORS
-    vec2 at = fract(cell);
     float sun = 1.0;
     for (int t = 0; t < u_shadow_types; ++t) {
         float w = geometry_share(t, d);
-        if (w >= 1.0) continue;  // the geometry casts every blade's shadow here
         vec2 from = uv + towards * (k * u_shadow_reach[t]);
         vec4 density = textureLod(u_design, vec3(from, 0.0), 0.0) * u_shadow_density;
         float x = clamp(dot(density, u_shadow_channel[t]), 0.0, 1.0);
-        float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, state, at, lod, x, k);
+        float all_of_them = 1.0 - u_shadow_strength * shadow_cover(t, state, cell, lod, x, k,
+                                                                   true);
+        if (w >= 1.0) continue;  // the geometry casts every blade's shadow here
         float drawn = w > 0.0
-            ? 1.0 - u_shadow_strength * shadow_cover(t, state, at, lod, w * x, k) : 1.0;
+            ? 1.0 - u_shadow_strength * shadow_cover(t, state, cell, lod, w * x, k, false) : 1.0;
         sun *= all_of_them / max(drawn, 1e-3);
     }
     return sun;
@@ -164,7 +168,9 @@ void main() {
     float d = distance(u_eye.xz, p);
     float k = shadow_length(v_world);  // derivatives: outside any branch
     float lod = field_lod(p);  // world units are cell units
-    float sun = inside > 0.0 ? unshadowed(uv, d, k, shadow_source(), p, lod) : 1.0;
+    // the shadows are worked out everywhere and kept inside the grass: no branch around the
+    // fields' first read
+    float sun = mix(1.0, unshadowed(uv, d, k, shadow_source(), p, lod), inside);
     f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);
 }
 
