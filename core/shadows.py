@@ -30,7 +30,9 @@ from core.patch import GrassPatch, blade_fill
 
 SAMPLES = 17  # densities 0, 1/16 … 1 at which cover is given
 RASTER = 384  # texels across a cell where the shadows are drawn
-OUTLINE_STEPS = 4  # points of a blade's outline per row of its strip (`_outlines`)
+# the points along a blade's outline, at least (`_outlines`: the strip's rows and as many
+# steps between them as make up this many)
+OUTLINE_POINTS = 16
 FIELD = 32  # texels across a cell of the field of where they fall (RASTER / 12 each)
 # the shadows' lengths over level ground's at which the field is drawn on uneven terrain; a
 # slope facing the sun shortens them, one facing away lengthens them (shaders/ground.glsl)
@@ -175,12 +177,14 @@ def reach(patch: GrassPatch) -> float:
     return float((area * middle).sum() / max(area.sum(), 1e-12))
 
 
-def _outlines(patch: GrassPatch, between: int = OUTLINE_STEPS) -> tuple[np.ndarray, np.ndarray]:
+def _outlines(patch: GrassPatch, between: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Each blade's outline (blades, 2 · rows, 3) — up its left edge, down its right — as its
     strip is drawn (straight between the patch's rows) and the blade texture's mask narrows it
-    (blade_fill, which is not straight between rows: `between` steps per row), and its
-    threshold."""
+    (blade_fill, which is not straight between rows: `between` steps per row, by default as
+    many as make OUTLINE_POINTS along the blade), and its threshold."""
     rows = patch.params.subdivisions + 1
+    if between is None:
+        between = max(1, -(-OUTLINE_POINTS // max(rows - 1, 1)))
     v = patch.vertices.reshape(-1, rows, 2)
     if not len(v):
         return np.zeros((0, 2 * ((rows - 1) * between + 1), 3)), np.zeros(0)
