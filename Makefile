@@ -48,7 +48,8 @@ test: test-deps lint $(EXTRAS) $(VALIDATOR)
 	# Two workers (pytest-xdist): much of a GL test is Python, process starts and llvmpipe's
 	# single-threaded shader compiles (on 2 cores: 340 s -> 234 s; the window tests, whose
 	# render processes keep both cores busy, gain little and run alone).
-	$(PY) -m pytest -n 2 -m "not gui" --ignore=tests/core --ignore=tests/app
+	# The tune tests measure what settings cost and run one at a time (their xdist group).
+	$(PY) -m pytest -n 2 --dist loadgroup -m "not gui" --ignore=tests/core --ignore=tests/app
 	QT_QPA_PLATFORM=xcb $(PY) -m pytest -m gui
 
 bench: $(STAMP)

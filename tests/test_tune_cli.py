@@ -15,6 +15,11 @@ from tests.test_cli import sward
 
 SMALL = ("--scene", "patch-grid", "--size", "160x90")
 
+# a tune run measures what its settings cost: two of them at once (a run of its own workers
+# beside another's search) take each other's cores and its choice with them; the tune tests
+# run one after the other in one worker (`make test` distributes by these groups)
+pytestmark = pytest.mark.xdist_group("tune")
+
 
 def whole_segments(folder: Path) -> tuple[str, ...]:
     """SMALL as a project whose blades keep all their segments: the search's figures weigh the

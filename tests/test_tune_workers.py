@@ -16,6 +16,9 @@ import pytest
 from tests.test_cli import sward
 from tests.test_tune_cli import SMALL, whole_segments
 
+# one tune run at a time (tests/test_tune_cli.py says why)
+pytestmark = pytest.mark.xdist_group("tune")
+
 
 def _check_sweep(r, out: Path, cache: Path, where: str) -> None:
     assert r.returncode == 0, r.stderr
