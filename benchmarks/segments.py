@@ -3,9 +3,9 @@
 all its segments, at the same camera and size, and the picture they make against each other
 (FLIP at full and at quarter resolution). For scale, the pass with every patch made of
 one-segment blades, every blade drawn: what fewer segments alone can save at most here; and
-the pass as drawn with every fragment discarded before its work (the `volume_cost` suite's
-floor): what rasterising the blades under 4× MSAA costs on this renderer, whatever the
-shaders do.
+the pass as drawn with a fragment stage that reads and computes nothing: what the blades'
+positions, set-up and rasterising under 4× MSAA cost on this renderer, and so the most that
+cheaper fragment shading could save.
 
 Run: `sward bench --suite segments --out results.json`.
 """
@@ -20,19 +20,22 @@ SIZE = (960, 540)
 CASES = (("bench", "zones"), ("football", "player"), ("meadow", "default"), ("meadow", "path"))
 
 
-_FLOOR = "    if (gl_FragCoord.x > -1.0) discard;\n"
+# a fragment stage that reads none of the blade's inputs (the uniforms the renderer sets kept):
+# llvmpipe runs a discarded fragment to its end, so a discard first would keep the shader's
+# whole cost; this leaves the vertex stage's position, the triangles' set-up and rasterising
+_FLOOR = "    f_color = vec4(u_alpha_ref) + texture(u_blade, vec2(0.5));\n"
 
 
 def _set(renderer, mode: str) -> None:
     """Segment LOD and the runs of blades on (`lod`, `floor`), or every blade with all its
-    segments; `floor`: the blades' fragments discarded first."""
+    segments; `floor`: a fragment stage that computes nothing."""
     import render.geometry as geometry
     from benchmarks.volume_cost import floor_loader
     from render.shaders import load_program
 
     on = mode != "full" and mode != "one"
     renderer.pipeline.segment_lod = on
-    geometry.load_program = floor_loader(_FLOOR) if mode == "floor" else load_program
+    geometry.load_program = floor_loader(_FLOOR, whole=True) if mode == "floor" else load_program
     for grass in renderer.pipeline.grass_types:
         grass.geometry.spans = geometry.GeometryRenderer.spans if on else 1
 

@@ -29,8 +29,10 @@ _IMAGE_FLOOR = "    if (gl_FragCoord.x > -1.0) { f_color = vec4(0.3, 0.5, 0.1, 1
 IMAGE_SIZE = (1024, 768)
 
 
-def floor_loader(patch: str):
-    """load_program for a renderer module whose fragment stage begins with `patch`."""
+def floor_loader(patch: str, whole: bool = False):
+    """load_program for a renderer module whose fragment stage begins with `patch`; `whole`:
+    whose fragment stage's main() is `patch` alone (its inputs unread, so the linker drops
+    them and the vertex stage's work for them)."""
     from render.shaders import ShaderError, stage_source
 
     made: dict = {}  # compiled once per variant: the renderers ask for theirs every pass
@@ -49,6 +51,8 @@ def floor_loader(patch: str):
                 head, found, tail = text.rpartition(marker)
                 if not found:
                     raise ShaderError(f"shaders/{file}: no main() to patch")
+                if whole:  # the rest of main() goes: up to its closing brace
+                    tail = "}\n" + tail.split("\n}\n", 1)[1]
                 text = head + marker + patch + tail
             return text
 
