@@ -33,6 +33,19 @@ def delete_windows_at_the_end():
     QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
 
 
+@pytest.fixture(scope="session")
+def kept_sums(tmp_path_factory):
+    return tmp_path_factory.mktemp("derived")
+
+
+@pytest.fixture(autouse=True)
+def sums_kept_between_windows(kept_sums, monkeypatch):
+    """The designer as a person runs it: the light sums its render processes derive are kept
+    between windows (render/derived_cache.py; tests/conftest.py turns the cache off for the
+    other tests), so each window after the first that needs a sum finds it made."""
+    monkeypatch.setenv("SWARD_CACHE", str(kept_sums))
+
+
 @pytest.fixture(autouse=True)
 def no_leaked_windows(request):
     """A test leaves no window of its own open (napari / ndv do the same): dialogs it opened
