@@ -79,6 +79,8 @@ class GeometryRenderer(InstancedRenderer):
         self._ranges: list[tuple[int, int, int, bool, int, int]] = []
         self._scale = 0.0  # this frame's segments.error_scale (0: every row drawn)
         self._commands: moderngl.Buffer | None = None
+        # prepare's programs: the WHOLE_STRIP variant for level 0 (True), the other levels'
+        self._variants: dict[bool, moderngl.Program] = {}
 
     def default_rows(self, instances: np.ndarray) -> np.ndarray:
         return np.zeros((instances.size, 1), np.float32)
@@ -205,25 +207,37 @@ class GeometryRenderer(InstancedRenderer):
 
     # -- the three passes --------------------------------------------------------------------
     def prepare(self, frame: FrameUniforms, defines: tuple[str, ...] = ()) -> None:
-        """`defines` on top of the frame's: SHADOW draws the blades' shadows (render/shadows.py)."""
-        self.use_program(load_program(self.ctx, self.file, frame.defines + defines))
-        frame.apply(self.program, self.technique_color)
-        if reads(self.program, "u_density_channel"):
-            self.program["u_density_channel"].value = self.density_channel
-        self.program["u_density"].value = float(self.density)
-        if reads(self.program, "u_cell_size"):  # where the wind or the segments read it
-            self.program["u_cell_size"].value = 1.0
-        self.program["u_alpha_ref"].value = self.alpha_ref
-        self.program["u_blade"].value = 0
-        self.program["u_epsilon"].value = self.epsilon
+        """`defines` on top of the frame's: SHADOW draws the blades' shadows (render/shadows.py).
+        Draws of the full strips (segment level 0) take the WHOLE_STRIP variant: their vertices'
+        normals interpolated are the strip's, which the other levels rebuild per fragment."""
+        defines = frame.defines + defines
+        whole = defines if "SHADOW" in defines else (*defines, "WHOLE_STRIP")
+        self._variants = {
+            level0: load_program(self.ctx, self.file, d)
+            for level0, d in ((True, whole), (False, defines))
+        }
+        for program in self._variants.values():
+            self._apply(program, frame)
+        self.use_program(self._variants[False])
+
+    def _apply(self, program: moderngl.Program, frame: FrameUniforms) -> None:
+        frame.apply(program, self.technique_color)
+        if reads(program, "u_density_channel"):
+            program["u_density_channel"].value = self.density_channel
+        program["u_density"].value = float(self.density)
+        if reads(program, "u_cell_size"):  # where the wind or the segments read it
+            program["u_cell_size"].value = 1.0
+        program["u_alpha_ref"].value = self.alpha_ref
+        program["u_blade"].value = 0
+        program["u_epsilon"].value = self.epsilon
         if self.patch is not None:
             for name, value in (
                 ("u_segment_scale", self._scale),
                 ("u_segment_last", len(self._levels) - 1),
                 ("u_subdivisions", self.patch.params.subdivisions),
             ):
-                if reads(self.program, name):
-                    self.program[name].value = float(value)
+                if reads(program, name):
+                    program[name].value = float(value)
         self.blade_texture.use(0)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.disable(moderngl.CULL_FACE)
@@ -234,13 +248,14 @@ class GeometryRenderer(InstancedRenderer):
             return
         commands = self._commands_for(self._ranges)
         self._commands = upload(self.ctx, self._commands, commands, grow_only=True)
-        leveled = reads(self.program, "u_segment_level")
         j = 0
         while j < len(self._ranges):  # one call per level and sliding: its runs of blades
             k, slides = self._ranges[j][0], self._ranges[j][3]
             n = 1
             while j + n < len(self._ranges) and self._ranges[j + n][0:4:3] == (k, slides):
                 n += 1
+            self.use_program(self._variants[k == 0])
+            leveled = reads(self.program, "u_segment_level")
             if leveled:  # a draw where nothing slides skips the sliding's work
                 self.program["u_segment_level"].value = float(k)
                 self.program["u_segment_scale"].value = self._scale if slides else 0.0
@@ -252,6 +267,7 @@ class GeometryRenderer(InstancedRenderer):
         render/shadows.py: an outline on the ground needs no more)."""
         if self.vao is None or not self._ranges:
             return
+        self.use_program(self._variants[False])
         last = len(self._levels) - 1
         if reads(self.program, "u_segment_level"):
             self.program["u_segment_level"].value = float(last)

@@ -124,6 +124,7 @@ void main() {
     if (lean != vec2(0.0)) wind_bend(c1, c2, lean);
     v_bent1 = c1;
     v_bent2 = c2;
+    normal = strip_normal(v_side, v_rest1, v_rest2, c1, c2, t);  // its row's, for WHOLE_STRIP
     // fewer segments far away (core/segments.py): a vertex the next level leaves out slides
     // onto its chord, its colour with it, and the blade widens as its strip shortens
     float m = segment_morph(in_segment);

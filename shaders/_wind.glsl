@@ -95,6 +95,20 @@ vec3 turn(vec3 v, vec3 a, vec3 b) {
     return v * c + cross(k, v) * s + k * dot(k, v) * (1.0 - c);
 }
 
+// A blade's normal at curve parameter t of its full strip: the patch's own (its width
+// direction × the curve's direction, core/patch.py) on the curve at rest (rest1, rest2), turned
+// with the curve where the wind bends it (bent1, bent2)
+vec3 strip_normal(vec3 side, vec3 rest1, vec3 rest2, vec3 bent1, vec3 bent2, float t) {
+    vec3 rest = curve_tangent(rest1, rest2, t);
+    vec3 n = cross(side, rest);
+    if (WIND_ON) {
+        vec3 bent = curve_tangent(bent1, bent2, t);
+        if (dot(rest, rest) > 1e-12 && dot(bent, bent) > 1e-12)
+            n = turn(n, normalize(rest), normalize(bent));
+    }
+    return dot(n, n) > 1e-18 ? normalize(n) : vec3(0.0, 1.0, 0.0);
+}
+
 // The slices and the top view hold the grass at rest: a far representation reads them where the
 // bent blades' parts at height y came from (Habel's sheared lookup). For the grass type's
 // tallest blade standing upright (height `height`) bent by `lean`, with t = y / its bent tip

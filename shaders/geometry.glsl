@@ -38,26 +38,23 @@ flat in vec3 v_bent2;
 flat in vec3 v_side;
 uniform float u_subdivisions;
 
-// The blade's normal at curve parameter t of the patch's full strip: the patch's own (side ×
-// the curve's direction, core/patch.py) at the full strip's rows around t, turned with the
-// curve where the wind bends it, and interpolated between them as the full strip's triangles
+// The blade's normal at curve parameter t of the patch's full strip (_wind.glsl strip_normal)
+// at the full strip's rows around t, interpolated between them as the full strip's triangles
 // interpolate its vertices' normals; so a blade drawn with fewer segments is lit as it is with
-// all of them
+// all of them. A draw of the full strips (WHOLE_STRIP) has those vertices: their normals
+// interpolated are the same, without the flat curve inputs and the two normals a fragment.
 vec3 row_normal(float t) {
-    vec3 rest = curve_tangent(v_rest1, v_rest2, t);
-    vec3 n = cross(v_side, rest);
-    if (WIND_ON) {
-        vec3 bent = curve_tangent(v_bent1, v_bent2, t);
-        if (dot(rest, rest) > 1e-12 && dot(bent, bent) > 1e-12)
-            n = turn(n, normalize(rest), normalize(bent));
-    }
-    return dot(n, n) > 1e-18 ? normalize(n) : vec3(0.0, 1.0, 0.0);
+    return strip_normal(v_side, v_rest1, v_rest2, v_bent1, v_bent2, t);
 }
 
 vec3 blade_normal(float t) {
+#if defined WHOLE_STRIP
+    return v_normal;
+#else
     float s = max(u_subdivisions, 1.0);
     float row = min(floor(t * s), s - 1.0);
     return mix(row_normal(row / s), row_normal((row + 1.0) / s), t * s - row);
+#endif
 }
 
 out vec4 f_color;

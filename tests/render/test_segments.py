@@ -82,3 +82,30 @@ def test_cells_in_a_transition_draw_only_the_blades_they_show(headless):
     # the same blades; only the cells' order differs, which decides a few ties in depth
     changed = np.abs(images[16].astype(int) - images[1].astype(int)).max(axis=2) > 2
     assert changed.mean() < 0.001
+
+
+def test_full_strips_are_lit_by_their_vertices_normals_as_the_rows_are(headless):
+    """A draw of the full strips (segment level 0) interpolates its vertices' normals (the
+    WHOLE_STRIP variant) where the coarser levels rebuild the full strip's normals per fragment:
+    with the wind bending the blades, both light them alike."""
+    from core.wind import Wind
+
+    one = LodConfig((LodLevel("geometry", 0.0, None),))
+    doc = dataclasses.replace(get_scene("patch-grid"), grid=(2, 2), lod=one).document()
+    doc.wind = Wind(enabled=True, gust_strength=0.8)
+    renderer = headless(doc)
+    renderer.pipeline.segment_lod = False  # every cell at level 0
+    geometry = renderer.pipeline.grass_types[0].geometry
+    camera = CameraSpec((1.0, 0.8, 3.2), (1.0, 0.2, 1.0)).camera()
+    whole, _ = renderer.render(camera, SIZE, measure=False)
+    prepare = geometry.prepare
+
+    def rebuilt(frame, defines=()):  # level 0 drawn with the coarser levels' program
+        prepare(frame, defines)
+        geometry._variants[True] = geometry._variants[False]
+
+    geometry.prepare = rebuilt
+    rows, _ = renderer.render(camera, SIZE, measure=False)
+    grass = np.abs(whole.astype(np.int16) - rows.astype(np.int16)).max(axis=2)
+    assert whole.std() > 10  # blades in view
+    assert (grass > 3).mean() < 0.002, (grass > 3).mean()
