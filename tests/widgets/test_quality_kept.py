@@ -11,6 +11,14 @@ from tests.widgets.test_designer import wait_for_slices
 pytestmark = pytest.mark.gui
 
 
+@pytest.fixture
+def own_cache(tmp_path, monkeypatch):
+    """A cache of this test's own (the window tests share one, tests/widgets/conftest.py): the
+    first Quality view finds no all-geometry frame kept by another test."""
+    monkeypatch.setenv("SWARD_CACHE", str(tmp_path / "cache"))
+
+
+@pytest.mark.usefixtures("own_cache")  # before the window's render processes start
 def test_after_a_zone_edit_the_quality_view_reuses_its_all_geometry_frame(window, qtbot):
     vp = window.viewport
     wait_for_slices(window, qtbot)
