@@ -9,8 +9,8 @@ from core.stats import FrameStats
 def status_text(
     stats: FrameStats, busy: str = "", fly_speed: float | None = None, wind_on_drafts: bool = False
 ) -> str:
-    """Blades, triangles, the cells of each representation and the frame's time (a draft's as
-    a whole); `busy`: what a render process says it is doing; `fly_speed`: in fly mode, its
+    """Blades, triangles, the cells of each representation and the frame's time and its parts
+    (a draft's as a whole); `busy`: what a render process says it is doing; `fly_speed`: in fly mode, its
     speed; `wind_on_drafts`: the wind moves on with drafts, no full frame follows them."""
     if stats.draft:  # a draft is timed as a whole only
         follows = (
@@ -20,9 +20,12 @@ def status_text(
         )
         timing = f"draft {stats.t_a_ms:.0f} ms, {follows}"
     else:
+        # the ground and props, and the blades' shadows where drawn: with shadows on they can
+        # cost more than the three representations together
+        shadows = f" · shadows {stats.t_s_ms:.0f}" if stats.t_s_ms > 0 else ""
         timing = (
-            f"frame {stats.t_a_ms:.0f} ms "
-            f"(g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · i {stats.t_i_ms:.0f} ms)"
+            f"frame {stats.t_a_ms:.0f} ms (g {stats.t_g_ms:.0f} · v {stats.t_v_ms:.0f} · "
+            f"i {stats.t_i_ms:.0f} · ground {stats.t_m_ms:.0f}{shadows} ms)"
         )
     return (
         (f"{busy} · " if busy else "")
