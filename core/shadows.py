@@ -22,6 +22,8 @@ field is drawn at a few such stretches (STRETCHES). `cover` is its mean over the
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
@@ -77,25 +79,34 @@ def field(
     shift = -sun[[0, 2]] / max(float(sun[1]), LOWEST_SUN)  # ground offset per unit of height
     length = float(np.linalg.norm(shift))
     way = shift / length if length > 0 else np.zeros(2)  # along the shadows, across the plan
-    for i, (sx, sz) in enumerate(states):
-        points = outlines.copy()
-        points[..., 0] = 0.5 + sx * (points[..., 0] - 0.5)
-        points[..., 2] = 0.5 + sz * (points[..., 2] - 0.5)
-        roots = 0.5 + np.array([sx, sz]) * (patch.roots.astype(np.float64) - 0.5)
+
+    # each outline point from its blade's root, the same in every mirror state but for signs
+    rel = outlines[..., [0, 2]] - patch.roots.astype(np.float64)[:, None, :]
+    heights = outlines[..., 1:2]
+
+    def state(i: int) -> None:
+        mirror = np.array(states[i])
+        roots = 0.5 + mirror * (patch.roots.astype(np.float64) - 0.5)
         # each shadow from its blade's root on level ground
-        level = points[..., [0, 2]] + points[..., 1:2] * shift - roots[:, None, :]
+        level = rel * mirror + heights * shift
         along = (level @ way)[..., None] * way
         for j, k in enumerate(stretches):
             # a slope scales the whole shadow along the sun by k: the ground's plane maps
             # the plan by I − sun_xz n_xzᵀ / (sun · n), of determinant k, taken as that stretch
-            ground = (roots[:, None, :] + level + (k - 1.0) * along) * raster
+            ground = level + (k - 1.0) * along
+            ground += roots[:, None, :]
+            ground *= raster
             image = np.full((raster, raster), 2.0)
             _shadows(ground, thresholds, image)
             out[i, j] = _below(image, texels, samples)
+
+    # the mirror states on threads of their own: the rasterising holds no GIL (numba nogil)
+    with ThreadPoolExecutor(min(len(states), os.cpu_count() or 1)) as pool:
+        list(pool.map(state, range(len(states))))
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _shadows(ground, thresholds, image):  # pragma: no cover - compiled
     """Each blade's shadow (its quads, two triangles each) into `image`, the lowest threshold
     kept per texel; the cell repeats, so what falls past an edge comes in at the other."""
@@ -121,7 +132,7 @@ def _cross(ax, ay, bx, by, cy, lo, hi):  # pragma: no cover - compiled
     return lo, hi
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _triangle(p0, p1, p2, value, image, n, m):  # pragma: no cover - compiled
     """The texels whose centres lie in the triangle, row by row (shadows are long and thin
     and cross the texels' rows and columns at any angle: a row's span, not the bounding box)."""
@@ -141,7 +152,7 @@ def _triangle(p0, p1, p2, value, image, n, m):  # pragma: no cover - compiled
                 image[i, j] = value
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _below(image, texels, samples):  # pragma: no cover - compiled
     """(samples, texels, texels): per density x = k / (samples − 1) the share of each block of
     the image's texels (texels × texels blocks) whose value lies below x."""
