@@ -211,7 +211,10 @@ class GeometryRenderer(InstancedRenderer):
         Draws of the full strips (segment level 0) take the WHOLE_STRIP variant: their vertices'
         normals interpolated are the strip's, which the other levels rebuild per fragment."""
         defines = frame.defines + defines
-        whole = defines if "SHADOW" in defines else (*defines, "WHOLE_STRIP")
+        # geometry.glsl's shaded blades light from normals; its shadows and the slices'
+        # capture (slice_capture.glsl) have one program for every level
+        lit = self.file == "geometry.glsl" and "SHADOW" not in defines
+        whole = (*defines, "WHOLE_STRIP") if lit else defines
         self._variants = {
             level0: load_program(self.ctx, self.file, d)
             for level0, d in ((True, whole), (False, defines))
