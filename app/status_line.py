@@ -10,8 +10,8 @@ def status_text(
     stats: FrameStats, busy: str = "", fly_speed: float | None = None, wind_on_drafts: bool = False
 ) -> str:
     """Blades, triangles, the cells of each representation and the frame's time and its parts
-    (a draft's as a whole); `busy`: what a render process says it is doing; `fly_speed`: in fly mode, its
-    speed; `wind_on_drafts`: the wind moves on with drafts, no full frame follows them."""
+    (a draft's as a whole); `busy`: what a render process says it is doing; `fly_speed`: in fly
+    mode, its speed; `wind_on_drafts`: the wind moves on with drafts, no full frame follows."""
     if stats.draft:  # a draft is timed as a whole only
         follows = (
             "the wind moves on with drafts (View → Sharp wind frames: full ones)"

@@ -81,12 +81,13 @@ def field(
     way = shift / length if length > 0 else np.zeros(2)  # along the shadows, across the plan
 
     # each outline point from its blade's root, the same in every mirror state but for signs
-    rel = outlines[..., [0, 2]] - patch.roots.astype(np.float64)[:, None, :]
+    patch_roots = patch.roots.astype(np.float64)
+    rel = outlines[..., [0, 2]] - patch_roots[:, None, :]
     heights = outlines[..., 1:2]
 
     def state(i: int) -> None:
         mirror = np.array(states[i])
-        roots = 0.5 + mirror * (patch.roots.astype(np.float64) - 0.5)
+        roots = 0.5 + mirror * (patch_roots - 0.5)
         # each shadow from its blade's root on level ground
         level = rel * mirror + heights * shift
         along = (level @ way)[..., None] * way

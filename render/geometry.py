@@ -219,9 +219,12 @@ class GeometryRenderer(InstancedRenderer):
             level0: load_program(self.ctx, self.file, d)
             for level0, d in ((True, whole), (False, defines))
         }
-        for program in self._variants.values():
+        for program in set(self._variants.values()):
             self._apply(program, frame)
         self.use_program(self._variants[False])
+        self.blade_texture.use(0)
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self.ctx.disable(moderngl.CULL_FACE)
 
     def _apply(self, program: moderngl.Program, frame: FrameUniforms) -> None:
         frame.apply(program, self.technique_color)
@@ -241,9 +244,6 @@ class GeometryRenderer(InstancedRenderer):
             ):
                 if reads(program, name):
                     program[name].value = float(value)
-        self.blade_texture.use(0)
-        self.ctx.enable(moderngl.DEPTH_TEST)
-        self.ctx.disable(moderngl.CULL_FACE)
 
     def draw(self) -> None:
         """One indirect command per segment level: its strips, its range of the instances."""
