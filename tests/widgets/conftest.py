@@ -9,28 +9,18 @@ from PySide6.QtCore import QSettings
 from app.designer import DesignerWindow
 from app.scenes import get_scene
 
-# Designer windows are closed after their test but deleted only at the end of the session:
-# deleting one destroys its pyqtgraph parameter trees in C++, and a later object born at a freed
-# address was seen to come back from shiboken as the dead tree item (a TypeError deep in a new
-# window's SpinBox, once in a dozen runs). Deleting them together at the end avoids the reuse.
+# Designer windows are closed after their test and never deleted: deleting one destroys its
+# pyqtgraph parameter trees in C++, and a later object born at a freed address was seen to come
+# back from shiboken as the dead tree item (a TypeError deep in a new window's SpinBox, once in
+# a dozen runs). Deleting them all at the end of the session took longer than the process's
+# exit (about half a second a window), so they go with the process.
 _windows: list = []
 
 
 def keep(window):
-    """Hold a designer window until the end of the session (instead of qtbot.addWidget)."""
+    """Hold a designer window until the process ends (instead of qtbot.addWidget)."""
     _windows.append(window)
     return window
-
-
-@pytest.fixture(scope="session", autouse=True)
-def delete_windows_at_the_end():
-    yield
-    from PySide6.QtCore import QCoreApplication, QEvent
-
-    for window in _windows:
-        window.deleteLater()
-    _windows.clear()
-    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
 
 
 @pytest.fixture(scope="session")
