@@ -45,5 +45,7 @@ def take(role: str, shared_dir: str) -> tuple[subprocess.Popen, socket.socket] |
     process, sock, folder = early
     if folder != shared_dir or process.poll() is not None:
         sock.close()
+        process.kill()  # it holds nothing yet; waited for, so that no zombie is left
+        process.wait()
         return None
     return process, sock

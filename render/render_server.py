@@ -332,7 +332,7 @@ def serve(conn, role: str) -> None:
         size = int(server.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
         conn.send(msg.Hello(os.getpid(), size, context.describe(server.ctx)))
         server.loop()
-    except (EOFError, BrokenPipeError, KeyboardInterrupt):
+    except (EOFError, BrokenPipeError, ConnectionResetError, KeyboardInterrupt):
         return  # the window went away
     except Exception:
         try:

@@ -49,6 +49,7 @@ def test_the_window_takes_the_processes_started_early_for_its_folder(fake_spawn)
 def test_processes_of_another_folder_or_gone_are_not_taken(fake_spawn):
     process_start.start_early(process_start.ROLES, "/kept", "SWARD_SHARED_SUMS")
     assert process_start.take(process_start.DRAFT, "/elsewhere") is None
+    assert fake_spawn[0].poll() is not None  # ended, not left running unowned
     fake_spawn[1].kill()
     fake_spawn[1].wait()
     assert process_start.take(process_start.FULL, "/kept") is None
