@@ -4,7 +4,9 @@ shadow pass (t_s) and of the ground (t_m, which takes the far grass's share of s
 the share the shadows add to t_a; and across the hand-over from the blades to the volume
 (density 0.3, 480 × 270), how far the LOD frame's darkening strays from the all-geometry
 frame's row by row, against two yardsticks of blade detail: the all-geometry frame a blade's
-width to the side, and the same grass with two other aperiodic tilings.
+width to the side, and the same grass with two other aperiodic tilings; and how far it strays
+once each of its rows is scaled to the share of ground the all-geometry frame's row shows
+(what of the stray is the grass covering more or less of the ground, not the shadows).
 
 Run: `sward bench --suite shadows --out results.json`.
 """
@@ -55,11 +57,13 @@ def run() -> list[dict]:
 def _hand_over(scene: str, name: str) -> dict:
     import numpy as np
 
+    import render.ground as ground_module
     from app.quality import shifted
     from app.scenes import get_scene
     from core.quality import technique_regions
     from render.grass_type import technique_colors
     from render.headless import HeadlessRenderer
+    from render.shaders import load_program
 
     size = (480, 270)
     document = get_scene(scene).document()
@@ -68,7 +72,7 @@ def _hand_over(scene: str, name: str) -> dict:
 
     def rows(mode: str, cam, regions: bool = False):
         """Per image row, how much darker the shadows make it; with `regions` the rows'
-        shares of geometry and volume too."""
+        shares of geometry, volume and bare ground too."""
         with HeadlessRenderer(document, mode=mode) as renderer:
             frames = []
             for shadows in (False, True):
@@ -82,10 +86,29 @@ def _hand_over(scene: str, name: str) -> dict:
         found = technique_regions(frames[1].astype(np.uint8), techniques, technique_colors())
         return dark, found["geometry"].mean(axis=1), found["volume"].mean(axis=1)
 
+    def ground(mode: str, cam):
+        """Per image row, the share of the ground it shows: the ground drawn white and then
+        black (shadows off), the difference over white."""
+        document.light = dataclasses.replace(document.light, blade_shadows=False)
+        frames = []
+        for level in (1.0, 0.0):
+            ground_module.load_program = _ground_loader(level)
+            try:
+                with HeadlessRenderer(document, mode=mode) as renderer:
+                    frames.append(renderer.render(cam, size, measure=False)[0].astype(float))
+            finally:
+                ground_module.load_program = load_program
+        return ((frames[0] - frames[1]) / 255.0).mean(axis=(1, 2))
+
     lod, blades, volume = rows("lod", camera, regions=True)
     first = int(np.flatnonzero(blades > 0.2)[0])  # the hand-over: 30 rows either side
     band = np.arange(max(first - 30, 0), min(first + 30, size[1]))
     geometry = rows("geometry", camera)
+    # the LOD frame's rows as if each showed as much ground as the all-geometry frame's
+    lod_ground, geometry_ground = ground("lod", camera), ground("geometry", camera)
+    same_ground = lod * np.where(
+        lod_ground > 0.01, geometry_ground / np.maximum(lod_ground, 0.01), 1.0
+    )
     side = rows("geometry", shifted(camera, float(document.params(0).width_max)))
     tilings = []
     for seed in (11, 12):
@@ -98,6 +121,7 @@ def _hand_over(scene: str, name: str) -> dict:
     return {
         "name": f"{scene}_{name}_hand_over",
         "rows_lod": strays(lod, geometry),
+        "rows_lod_same_ground": strays(same_ground, geometry),
         "rows_shifted": strays(side, geometry),
         "rows_tilings": max(strays(tilings[0], geometry), strays(tilings[1], geometry)),
         "volume_side": float(lod[band[volume[band] > 0.5]].mean()),
@@ -105,3 +129,27 @@ def _hand_over(scene: str, name: str) -> dict:
         "blades_side": float(lod[band[blades[band] > 0.2]].mean()),
         "blades_side_geometry": float(geometry[band[blades[band] > 0.2]].mean()),
     }
+
+
+def _ground_loader(level: float):
+    """load_program for render/ground.py whose ground is drawn in one grey `level`, the
+    uniforms it reads kept (the ground's own colour mixed in at a hundred-thousandth)."""
+    from render.shaders import ShaderError, stage_source
+
+    made: dict = {}
+    line = "f_color = vec4(soil(v_world, u_eye, inside, sun), 1.0);"
+    flat = f"f_color = vec4(mix(soil(v_world, u_eye, inside, sun), vec3({level}), 0.99999), 1.0);"
+
+    def program(ctx, file, defines=()):
+        key = (ctx, file, tuple(defines))
+        if key not in made:
+            fragment = stage_source(file, "FRAGMENT_SHADER", tuple(defines))
+            if line not in fragment:
+                raise ShaderError(f"shaders/{file}: no ground colour to replace")
+            made[key] = ctx.program(
+                vertex_shader=stage_source(file, "VERTEX_SHADER", tuple(defines)),
+                fragment_shader=fragment.replace(line, flat),
+            )
+        return made[key]
+
+    return program
