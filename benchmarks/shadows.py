@@ -72,7 +72,7 @@ def _hand_over(scene: str, name: str) -> dict:
 
     def rows(mode: str, cam, regions: bool = False):
         """Per image row, how much darker the shadows make it; with `regions` the rows'
-        shares of geometry, volume and bare ground too."""
+        shares of geometry and volume too."""
         with HeadlessRenderer(document, mode=mode) as renderer:
             frames = []
             for shadows in (False, True):
