@@ -12,8 +12,8 @@ from app.scenes import get_scene
 # Designer windows are closed after their test and never deleted: deleting one destroys its
 # pyqtgraph parameter trees in C++, and a later object born at a freed address was seen to come
 # back from shiboken as the dead tree item (a TypeError deep in a new window's SpinBox, once in
-# a dozen runs). Deleting them all at the end of the session took longer than the process's
-# exit (about half a second a window), so they go with the process.
+# a dozen runs). Deleted all at the end of the session they cost more time than the process's
+# exit does, so they go with the process.
 _windows: list = []
 
 
