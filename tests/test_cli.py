@@ -10,11 +10,15 @@ import pytest
 from PIL import Image
 
 from app.scenes import get_scene
-from tests.conftest import coverage
+from tests.conftest import CLI_CACHE_ENV, coverage
 from tests.project_files import project_parts, write_project
 
 
 def sward(*args, env=None):
+    """`sward ARGS` as a user runs it, keeping its light sums as a user's runs do (between the
+    test run's processes: tests/conftest.py cli_cache) unless `env` names SWARD_CACHE."""
+    if env is None:
+        env = {**os.environ, "SWARD_CACHE": os.environ.get(CLI_CACHE_ENV, "off")}
     return subprocess.run(
         [sys.executable, "-m", "app.cli", *args],
         capture_output=True,

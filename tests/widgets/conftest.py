@@ -1,5 +1,7 @@
 """A designer window under Xvfb for the widget tests, and helpers to read its image."""
 
+import os
+import sys
 import time
 
 import numpy as np
@@ -21,6 +23,30 @@ def keep(window):
     """Hold a designer window until the process ends (instead of qtbot.addWidget)."""
     _windows.append(window)
     return window
+
+
+_exit_status = [0]
+
+
+def pytest_sessionfinish(session, exitstatus):
+    _exit_status[0] = int(exitstatus)
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_unconfigure(config):
+    """A run that made windows ends here, once pytest has reported and every plugin has
+    finished: at the interpreter's exit Qt would tear down each kept window's widgets and
+    native windows in C++, about a third of a second a window (half a minute for the whole
+    window suite), for a process that is about to end anyway. Their render processes ended
+    when the windows closed; Xvfb is stopped as its plugin would at exit."""
+    if not _windows:
+        return
+    import pytest_xvfb
+
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pytest_xvfb.shutdown_xvfb()
+    os._exit(_exit_status[0])
 
 
 @pytest.fixture(scope="session")
