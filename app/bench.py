@@ -29,6 +29,11 @@ SUITES = (
 MODULES = {"techniques": "representations"}
 
 
+def _figure(value: float) -> str:
+    """Milliseconds and ratios to a tenth; small figures (FLIP, shares) to three digits."""
+    return f"{value:,.1f}" if abs(value) >= 10 else f"{value:.3g}"
+
+
 def run(suites: list[str] | None, out: Path | None) -> int:
     import importlib
 
@@ -47,7 +52,7 @@ def run(suites: list[str] | None, out: Path | None) -> int:
         results[name] = module.run()
         for row in results[name]:
             numbers = {k: v for k, v in row.items() if isinstance(v, float)}
-            cells = "  ".join(f"{k}={v:,.1f}" for k, v in numbers.items())
+            cells = "  ".join(f"{k}={_figure(v)}" for k, v in numbers.items())
             print(f"{name:12s} {row['name']:32s} {cells}")
     if out is not None:
         out.write_text(json.dumps(results, indent=2) + "\n")

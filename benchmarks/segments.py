@@ -5,7 +5,8 @@ all its segments, at the same camera and size, and the picture they make against
 one-segment blades, every blade drawn: what fewer segments alone can save at most here; and
 the pass as drawn with a fragment stage that reads and computes nothing: what the blades'
 positions, set-up and rasterising under 4× MSAA cost on this renderer, and so the most that
-cheaper fragment shading could save.
+cheaper fragment shading could save. A row per larger tolerance (the LOD dock's setting, up to
+its 8 px) gives what trading the picture for fewer segments buys.
 
 Run: `sward bench --suite segments --out results.json`.
 """
@@ -13,10 +14,12 @@ Run: `sward bench --suite segments --out results.json`.
 from __future__ import annotations
 
 import statistics
+from dataclasses import replace
 
 from core.quality import Comparison
 
 SIZE = (960, 540)
+TOLERANCES_PX = (1.0, 2.0, 4.0, 8.0)
 CASES = (("bench", "zones"), ("football", "player"), ("meadow", "default"), ("meadow", "path"))
 
 
@@ -58,6 +61,49 @@ def _times(renderer, camera, runs: int, modes: tuple) -> tuple[dict, dict, dict]
     return images, triangles, {mode: statistics.median(t) for mode, t in times.items()}
 
 
+def _tolerance(renderer, px: float) -> None:
+    for grass in renderer.pipeline.grass_types:
+        grass.lod = replace(grass.lod, segment_tolerance=px)
+
+
+def tolerances(scene_name: str, camera_name: str, runs: int = 5) -> list[dict]:
+    """The geometry pass with segment LOD at each of TOLERANCES_PX against every blade with
+    all its segments, timed in turns with it, and the picture against it."""
+    from app.scenes import get_scene
+    from render.headless import HeadlessRenderer
+
+    doc = get_scene(scene_name).document()
+    camera = doc.camera(camera_name)
+    renderer = HeadlessRenderer(doc)
+    modes = ("full", *TOLERANCES_PX)
+    images, triangles, times = {}, {}, {mode: [] for mode in modes}
+
+    def draw(mode):
+        _set(renderer, "full" if mode == "full" else "lod")
+        if mode != "full":
+            _tolerance(renderer, mode)
+        return renderer.render(camera, SIZE)
+
+    for mode in modes:
+        images[mode], stats = draw(mode)
+        triangles[mode] = stats.triangles
+    for _ in range(runs):
+        for mode in modes:
+            times[mode].append(draw(mode)[1].t_g_ms)
+    renderer.release()
+    full = statistics.median(times["full"])
+    return [
+        {
+            "name": f"{scene_name}_{camera_name}_within_{px:g}px",
+            "speedup": full / statistics.median(times[px]),
+            "triangles": triangles[px],
+            "full_triangles": triangles["full"],
+            "flip_quarter": Comparison.of(images["full"], images[px]).flip_quarter,
+        }
+        for px in TOLERANCES_PX
+    ]
+
+
 def compare(scene_name: str, camera_name: str, runs: int = 5) -> dict:
     from app.scenes import get_scene
     from render.headless import HeadlessRenderer
@@ -88,4 +134,7 @@ def compare(scene_name: str, camera_name: str, runs: int = 5) -> dict:
 
 
 def run() -> list[dict]:
-    return [compare(scene, camera) for scene, camera in CASES]
+    rows = []
+    for scene, camera in CASES:
+        rows += [compare(scene, camera), *tolerances(scene, camera)]
+    return rows
