@@ -6,7 +6,14 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from core.heights import bilinear, cell_ranges, corner_deviations, ground_planes, hills
+from core.heights import (
+    _float16_outward,
+    bilinear,
+    cell_ranges,
+    corner_deviations,
+    ground_planes,
+    hills,
+)
 from core.terrain import Terrain
 
 
@@ -63,3 +70,16 @@ def test_planes_are_closer_than_the_range_on_hills():
     thickness = planes[:, 3] - planes[:, 2]
     assert np.all(thickness <= cells["ground"][:, 1] + 1e-6)
     assert thickness.mean() < 0.6 * cells["ground"][:, 1].mean()
+
+
+def test_deviations_kept_in_half_precision_stay_bounds():
+    """The per-cell deviations are kept in float16 (half the memory of a 4096² terrain's two
+    tables): each is rounded away from the ground it bounds, never across it."""
+    values = np.random.default_rng(3).normal(0.0, 3.0, 100_000).astype(np.float32)
+    below, above = _float16_outward(values, -np.inf), _float16_outward(values, np.inf)
+    assert below.dtype == above.dtype == np.float16
+    assert np.all(below.astype(np.float32) <= values)
+    assert np.all(above.astype(np.float32) >= values)
+    assert np.abs(above.astype(np.float32) - values).max() < 0.01  # and close to them
+    _, lo, hi = corner_deviations(hills(33), 5.0, 20, 20)
+    assert lo.dtype == hi.dtype == np.float16
