@@ -352,6 +352,9 @@ def _deviations(
             hi[c, r] = high[c] + margin
 
 
+_CHUNK_CORNERS = 1 << 20  # ground_planes' blocks are fitted this many corners at a time
+
+
 def ground_planes(
     corners: np.ndarray, below: np.ndarray, above: np.ndarray, ix, iz, sx, sz, base
 ) -> np.ndarray:
@@ -371,24 +374,25 @@ def ground_planes(
     out = np.zeros((ix.size, 4), np.float32)
     columns, rows = below.shape
     for w, h in {(int(a), int(b)) for a, b in zip(sx, sz, strict=True)}:
-        at = np.flatnonzero((sx == w) & (sz == h))
-        x = np.arange(w + 1)
-        z = np.arange(h + 1)
-        c = corners[np.minimum(ix[at, None, None] + x[None, :, None], columns),
-                    np.minimum(iz[at, None, None] + z[None, None, :], rows)]  # fmt: skip
-        c = c.astype(np.float64)  # the fit in double precision; the corners are kept in float32
-        # least squares over a full grid of corners: the slopes separate by axis
-        xc, zc = x - 0.5 * w, z - 0.5 * h
-        gx = (c.mean(axis=2) @ xc) / max(float(xc @ xc), 1e-12)  # (k,)
-        gz = (c.mean(axis=1) @ zc) / max(float(zc @ zc), 1e-12)
-        r = c - gx[:, None, None] * x[None, :, None] - gz[:, None, None] * z[None, None, :]
-        r_lo = np.minimum(np.minimum(r[:, :-1, :-1], r[:, 1:, :-1]),
-                          np.minimum(r[:, :-1, 1:], r[:, 1:, 1:]))  # fmt: skip
-        r_hi = np.maximum(np.maximum(r[:, :-1, :-1], r[:, 1:, :-1]),
-                          np.maximum(r[:, :-1, 1:], r[:, 1:, 1:]))  # fmt: skip
-        cells = (np.minimum(ix[at, None, None] + x[None, :-1, None], columns - 1),
-                 np.minimum(iz[at, None, None] + z[None, None, :-1], rows - 1))  # fmt: skip
-        out[at, 0], out[at, 1] = gx, gz
-        out[at, 2] = (r_lo + below[cells]).min(axis=(1, 2)) - base[at]
-        out[at, 3] = (r_hi + above[cells]).max(axis=(1, 2)) - base[at]
+        group = np.flatnonzero((sx == w) & (sz == h))
+        step = max(_CHUNK_CORNERS // ((w + 1) * (h + 1)), 1)  # blocks at a time: bounded memory
+        x, z = np.arange(w + 1), np.arange(h + 1)
+        for at in (group[i : i + step] for i in range(0, group.size, step)):
+            c = corners[np.minimum(ix[at, None, None] + x[None, :, None], columns),
+                        np.minimum(iz[at, None, None] + z[None, None, :], rows)]  # fmt: skip
+            c = c.astype(np.float64)  # the fit in double precision; the corners are kept in float32
+            # least squares over a full grid of corners: the slopes separate by axis
+            xc, zc = x - 0.5 * w, z - 0.5 * h
+            gx = (c.mean(axis=2) @ xc) / max(float(xc @ xc), 1e-12)  # (k,)
+            gz = (c.mean(axis=1) @ zc) / max(float(zc @ zc), 1e-12)
+            r = c - gx[:, None, None] * x[None, :, None] - gz[:, None, None] * z[None, None, :]
+            r_lo = np.minimum(np.minimum(r[:, :-1, :-1], r[:, 1:, :-1]),
+                              np.minimum(r[:, :-1, 1:], r[:, 1:, 1:]))  # fmt: skip
+            r_hi = np.maximum(np.maximum(r[:, :-1, :-1], r[:, 1:, :-1]),
+                              np.maximum(r[:, :-1, 1:], r[:, 1:, 1:]))  # fmt: skip
+            cells = (np.minimum(ix[at, None, None] + x[None, :-1, None], columns - 1),
+                     np.minimum(iz[at, None, None] + z[None, None, :-1], rows - 1))  # fmt: skip
+            out[at, 0], out[at, 1] = gx, gz
+            out[at, 2] = (r_lo + below[cells]).min(axis=(1, 2)) - base[at]
+            out[at, 3] = (r_hi + above[cells]).max(axis=(1, 2)) - base[at]
     return out
