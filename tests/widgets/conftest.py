@@ -35,10 +35,10 @@ def pytest_sessionfinish(session, exitstatus):
 @pytest.hookimpl(trylast=True)
 def pytest_unconfigure(config):
     """A run that made windows ends here, once pytest has reported and every plugin has
-    finished: at the interpreter's exit Qt would tear down each kept window's widgets and
-    native windows in C++, about a third of a second a window (half a minute for the whole
-    window suite), for a process that is about to end anyway. Their render processes ended
-    when the windows closed; Xvfb is stopped as its plugin would at exit."""
+    finished: at the interpreter's exit Qt would tear down every kept window's widgets and
+    native windows one by one, work that grows with the windows kept, for a process about to
+    end anyway. Their render processes ended when the windows closed; Xvfb is stopped as its
+    plugin would at exit, and the exit status is pytest's."""
     if not _windows:
         return
     import pytest_xvfb
