@@ -43,27 +43,30 @@ def _set(renderer, mode: str) -> None:
         grass.geometry.spans = geometry.GeometryRenderer.spans if on else 1
 
 
-def _times(renderer, camera, runs: int, modes: tuple) -> tuple[dict, dict, dict]:
-    """Per mode: its frame, its triangles and its geometry pass's times, the modes drawn in
-    turns so that each sees the same machine."""
+def _times(renderer, camera, runs: int, modes: tuple, apply=_set) -> tuple[dict, dict, dict]:
+    """Per mode (set by `apply`): its frame, its triangles and its geometry pass's times, the
+    modes drawn in turns so that each sees the same machine."""
     images, triangles, times = {}, {}, {mode: [] for mode in modes}
     try:
         for mode in modes:  # warm: programs, slices, light tables
-            _set(renderer, mode)
+            apply(renderer, mode)
             images[mode], stats = renderer.render(camera, SIZE)
             triangles[mode] = stats.triangles
         for _ in range(runs):
             for mode in modes:
-                _set(renderer, mode)
+                apply(renderer, mode)
                 times[mode].append(renderer.render(camera, SIZE)[1].t_g_ms)
     finally:
         _set(renderer, "lod")
     return images, triangles, {mode: statistics.median(t) for mode, t in times.items()}
 
 
-def _tolerance(renderer, px: float) -> None:
-    for grass in renderer.pipeline.grass_types:
-        grass.lod = replace(grass.lod, segment_tolerance=px)
+def _tolerance(renderer, mode) -> None:
+    """Every blade with all its segments (`full`), or segment LOD within `mode` pixels."""
+    _set(renderer, "full" if mode == "full" else "lod")
+    if mode != "full":
+        for grass in renderer.pipeline.grass_types:
+            grass.lod = replace(grass.lod, segment_tolerance=mode)
 
 
 def tolerances(scene_name: str, camera_name: str, runs: int = 5) -> list[dict]:
@@ -76,26 +79,12 @@ def tolerances(scene_name: str, camera_name: str, runs: int = 5) -> list[dict]:
     camera = doc.camera(camera_name)
     renderer = HeadlessRenderer(doc)
     modes = ("full", *TOLERANCES_PX)
-    images, triangles, times = {}, {}, {mode: [] for mode in modes}
-
-    def draw(mode):
-        _set(renderer, "full" if mode == "full" else "lod")
-        if mode != "full":
-            _tolerance(renderer, mode)
-        return renderer.render(camera, SIZE)
-
-    for mode in modes:
-        images[mode], stats = draw(mode)
-        triangles[mode] = stats.triangles
-    for _ in range(runs):
-        for mode in modes:
-            times[mode].append(draw(mode)[1].t_g_ms)
+    images, triangles, ms = _times(renderer, camera, runs, modes, _tolerance)
     renderer.release()
-    full = statistics.median(times["full"])
     return [
         {
             "name": f"{scene_name}_{camera_name}_within_{px:g}px",
-            "speedup": full / statistics.median(times[px]),
+            "speedup": ms["full"] / ms[px],
             "triangles": triangles[px],
             "full_triangles": triangles["full"],
             "flip_quarter": Comparison.of(images["full"], images[px]).flip_quarter,

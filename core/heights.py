@@ -377,12 +377,12 @@ def ground_planes(
         group = np.flatnonzero((sx == w) & (sz == h))
         step = max(_CHUNK_CORNERS // ((w + 1) * (h + 1)), 1)  # blocks at a time: bounded memory
         x, z = np.arange(w + 1), np.arange(h + 1)
+        xc, zc = x - 0.5 * w, z - 0.5 * h
         for at in (group[i : i + step] for i in range(0, group.size, step)):
             c = corners[np.minimum(ix[at, None, None] + x[None, :, None], columns),
                         np.minimum(iz[at, None, None] + z[None, None, :], rows)]  # fmt: skip
             c = c.astype(np.float64)  # the fit in double precision; the corners are kept in float32
             # least squares over a full grid of corners: the slopes separate by axis
-            xc, zc = x - 0.5 * w, z - 0.5 * h
             gx = (c.mean(axis=2) @ xc) / max(float(xc @ xc), 1e-12)  # (k,)
             gz = (c.mean(axis=1) @ zc) / max(float(zc @ zc), 1e-12)
             r = c - gx[:, None, None] * x[None, :, None] - gz[:, None, None] * z[None, None, :]
