@@ -56,7 +56,7 @@ class Frame:
 @dataclass
 class _Process:
     role: str
-    process: subprocess.Popen
+    process: subprocess.Popen | process_start.Forked
     conn: Connection
     pid: int = 0
     max_image_size: int = 0
@@ -147,7 +147,7 @@ class RenderClient:
         if old.process.poll() is None:
             old.process.kill()
         code = old.process.wait(timeout=10)
-        why = f"killed by signal {-code}" if code is not None and code < 0 else f"exit {code}"
+        why = f"killed by signal {-code}" if code < 0 else f"exit {code}"
         old.release_files()
         self.processes[role] = self._start(role)
         if self._document is not None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 import socket
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -53,3 +54,49 @@ def test_processes_of_another_folder_or_gone_are_not_taken(fake_spawn):
     fake_spawn[1].kill()
     fake_spawn[1].wait()
     assert process_start.take(process_start.FULL, "/kept") is None
+
+
+def _parent(pid: int) -> int:
+    stat = Path(f"/proc/{pid}/stat").read_text()
+    return int(stat.rsplit(")", 1)[1].split()[1])
+
+
+def _started(role: str, folder) -> tuple:
+    from multiprocessing.connection import Connection
+
+    from render import protocol as msg
+
+    process, mine = process_start.spawn(role, str(folder), "SWARD_SHARED_SUMS")
+    conn = Connection(mine.detach())
+    assert conn.poll(120), "the render process did not answer"
+    hello = conn.recv()
+    assert isinstance(hello, msg.Hello) and hello.pid == process.pid
+    return process, conn
+
+
+def test_render_processes_are_forked_from_one_that_did_the_imports(tmp_path):
+    """Both of a window's render processes, and one started again after a process died, come
+    from the fork server: one process's imports, each its own GL context; the window learns
+    how each ended, as from a process of its own."""
+    from render import protocol as msg
+
+    first, first_conn = _started(process_start.DRAFT, tmp_path)
+    server = process_start._server
+    assert server is not None and _parent(first.pid) == server.process.pid
+    second, second_conn = _started(process_start.FULL, tmp_path)
+    assert process_start._server is server and _parent(second.pid) == server.process.pid
+    assert second.pid != first.pid and first.poll() is None
+    first.kill()
+    assert first.wait(timeout=30) == -9  # what the window shows: "killed by signal 9"
+    second_conn.send(msg.Quit())
+    assert second.wait(timeout=30) == 0
+    first_conn.close()
+    second_conn.close()
+    # the fork server gone, the next render process starts all the same (a new server)
+    server.process.kill()
+    server.process.wait()
+    third, third_conn = _started(process_start.DRAFT, tmp_path)
+    assert process_start._server is not server
+    third_conn.send(msg.Quit())
+    assert third.wait(timeout=30) == 0
+    third_conn.close()

@@ -1,0 +1,81 @@
+"""The process the designer's render processes are forked from (render/process_start.py).
+
+A render process spends about a second of CPU importing numpy, numba and Sward's render modules
+and loading numba's compiled kernels before it makes its GL context, and the designer starts two,
+and another whenever one dies. This process does that once and forks a render process for each
+request: the child takes the request's environment, makes its own GL context (none is made here
+before a fork) and serves its window over the socket end the request carried
+(render/render_server.py serve), and ends as `python -m render.render_server` would. This process
+is the children's parent: it tells the window a child's exit status once the child has ended,
+and until then the child's pid stays its own.
+
+One request or reply is one datagram of a SOCK_SEQPACKET socket pair, a JSON object:
+    {"role": ROLE, "env": {...}} and the socket end      ->  {"pid": PID}
+    {"status": PID}  (once that child has ended)         ->  {"code": CODE or null}
+It ends when the window's end of the pair closes.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import sys
+
+MAX_REQUEST = 1 << 20  # bytes: an environment is far smaller
+
+
+def _warm() -> None:
+    """A render process's imports, and numba's first load of a compiled kernel (its
+    registries), which every process pays once."""
+    import numpy as np
+
+    import core.noise
+    import render.render_server
+
+    del render
+    core.noise.perlin2d(np.zeros((2, 2)), np.zeros((2, 2)), 1, 0)
+
+
+def _serve_child(request: dict, fd: int, server: socket.socket) -> None:
+    """In the child: the render process of the request's role, to its end."""
+    from multiprocessing.connection import Connection
+
+    from render.render_server import serve
+
+    server.close()
+    os.environ.clear()
+    os.environ.update(request["env"])
+    serve(Connection(fd), request["role"])
+
+
+def main(fd: int) -> None:
+    server = socket.socket(fileno=fd)
+    try:
+        _warm()
+        while True:
+            data, fds, _flags, _address = socket.recv_fds(server, MAX_REQUEST, 1)
+            if not data:
+                return  # the window went away
+            request = json.loads(data)
+            if "status" in request:
+                try:
+                    _, status = os.waitpid(int(request["status"]), 0)
+                    code = os.waitstatus_to_exitcode(status)
+                except ChildProcessError:
+                    code = None  # not a child of this process, or asked for before
+                server.send(json.dumps({"code": code}).encode())
+                continue
+            pid = os.fork()
+            if pid == 0:
+                _serve_child(request, fds[0], server)
+                sys.exit(0)  # through the interpreter's own exit, as a process of its own
+            for received in fds:
+                os.close(received)
+            server.send(json.dumps({"pid": pid}).encode())
+    except (ConnectionResetError, BrokenPipeError, KeyboardInterrupt):
+        return
+
+
+if __name__ == "__main__":  # python -m render.fork_server FD (render/process_start.py)
+    main(int(sys.argv[1]))
