@@ -10,15 +10,20 @@ import pytest
 from PIL import Image
 
 from app.scenes import get_scene
+from tests import cli_process
 from tests.conftest import CLI_CACHE_ENV, coverage
 from tests.project_files import project_parts, write_project
 
 
-def sward(*args, env=None):
+def sward(*args, env=None, fresh=False):
     """`sward ARGS` as a user runs it, keeping its light sums as a user's runs do (between the
-    test run's processes: tests/conftest.py cli_cache) unless `env` names SWARD_CACHE."""
+    test run's processes: tests/conftest.py cli_cache) unless `env` names SWARD_CACHE. The
+    process is forked from one that has done the imports every run repeats
+    (tests/cli_process.py); `fresh` starts a new interpreter, `python -m app.cli ARGS`."""
     if env is None:
         env = {**os.environ, "SWARD_CACHE": os.environ.get(CLI_CACHE_ENV, "off")}
+    if not fresh:
+        return cli_process.run(args, env, timeout=240)
     return subprocess.run(
         [sys.executable, "-m", "app.cli", *args],
         capture_output=True,
@@ -44,9 +49,9 @@ def test_render_writes_png_and_stats(tmp_path):
         str(out),
         "--stats",
         str(st),
+        fresh=True,  # the one run here from a new interpreter, as a user starts it
     )
     assert r.returncode == 0, r.stderr
-    import numpy as np
 
     image = np.asarray(Image.open(out))
     assert image.shape == (120, 160, 3)
