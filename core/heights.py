@@ -7,6 +7,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from core.quadtree import half_outward
+
 
 def _texels(coord, size: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """GL_LINEAR with clamp-to-edge along one axis: the two texels around each coordinate in
@@ -224,8 +226,9 @@ def cell_curvature(heights: np.ndarray, scale: float, columns: int, rows: int) -
 
 def block_maxima(values: np.ndarray) -> list[np.ndarray]:
     """`values` (columns, rows) and its maxima over blocks of 2 × 2, 4 × 4, … cells, down to
-    one block: level k's entry (i, j) is the largest over cells [i 2^k, (i + 1) 2^k) × …"""
-    levels = [np.asarray(values, np.float32)]
+    one block: level k's entry (i, j) is the largest over cells [i 2^k, (i + 1) 2^k) × …; in
+    the values' own float type."""
+    levels = [np.asarray(values)]
     while max(levels[-1].shape) > 1:
         v = levels[-1]
         v = np.pad(v, ((0, v.shape[0] % 2), (0, v.shape[1] % 2)))
@@ -312,17 +315,7 @@ def corner_deviations(
         z0, z1, tz, cell_z, zs * rows - cell_z, z_starts,
         1e-4 * max(scale, 1.0), lo, hi,
     )  # fmt: skip
-    return corners.astype(np.float32), _float16_outward(lo, -np.inf), _float16_outward(hi, np.inf)
-
-
-def _float16_outward(values: np.ndarray, towards: float) -> np.ndarray:
-    """`values` in float16, each rounded towards `towards` where rounding to the nearest would
-    cross it: a bound stays a bound. The deviations are kept for the terrain's life (two
-    arrays of 64 MB in float32 at 4096² cells) and are small beside the ground's range."""
-    out = values.astype(np.float16)
-    crossed = out > values if towards < 0 else out < values
-    out[crossed] = np.nextafter(out[crossed], np.float16(towards))
-    return out
+    return corners.astype(np.float32), half_outward(lo, down=True), half_outward(hi, down=False)
 
 
 @numba.njit(cache=True, parallel=True)

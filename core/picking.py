@@ -50,8 +50,7 @@ def ground_hit(
     """The first point where the ray meets the ground inside the terrain, or None; `heights`
     as in ground_height."""
     x0, z0, x1, z1 = terrain.rect
-    top = float(terrain.cell_max.max()) if terrain.cell_max.size else 0.0
-    bottom = float(terrain.cell_min.min()) if terrain.cell_min.size else 0.0
+    bottom, top = terrain.ground_span
     if heights is not None and terrain.height_scale > 0:
         top = max(top, float(heights.max()) * terrain.height_scale)
         bottom = min(bottom, float(heights.min()) * terrain.height_scale)

@@ -63,8 +63,8 @@ class QuadTree:
         )
         # half floats, rounded outwards: the ranges stay conservative at half the memory
         for level in range(len(shapes)):
-            tree.y_min[level][...] = _half(lo, down=True)
-            tree.y_max[level][...] = _half(hi, down=False)
+            tree.y_min[level][...] = half_outward(lo, down=True)
+            tree.y_max[level][...] = half_outward(hi, down=False)
             if level + 1 < len(shapes):
                 lo = reduce_2x2(lo, np.minimum, np.inf)
                 hi = reduce_2x2(hi, np.maximum, -np.inf)
@@ -130,10 +130,17 @@ def reduce_2x2(a: np.ndarray, op, fill) -> np.ndarray:
     return op(op(a[0::2, 0::2], a[1::2, 0::2]), op(a[0::2, 1::2], a[1::2, 1::2]))
 
 
-def _half(a: np.ndarray, down: bool) -> np.ndarray:
-    """float16 copy of `a`, each value rounded towards -inf (down) or +inf."""
-    h = a.astype(np.float16)
-    wrong = (h.astype(np.float32) > a) if down else (h.astype(np.float32) < a)
-    # ufunc `where` rather than fancy indexing: half the values of a level may need it
-    np.nextafter(h, np.float16(-np.inf if down else np.inf), out=h, where=wrong)
+def half_outward(a: np.ndarray, down: bool) -> np.ndarray:
+    """float16 copy of `a`, each value rounded towards -inf (down) or +inf where rounding to
+    the nearest would cross it: a bound stays a bound. The step is one on the half float's bit
+    pattern, away from zero on the side rounded towards and towards it on the other (numpy's
+    nextafter on float16 is emulated and costs several times the conversion)."""
+    with np.errstate(over="ignore"):  # beyond the largest half float: inf, then one back
+        h = np.asarray(a).astype(np.float16)
+    crossed = h > a if down else h < a
+    bits = h.view(np.uint16)
+    negative = bits >= 0x8000  # astype keeps the sign of a value that rounds to zero
+    away = negative if down else ~negative
+    np.add(bits, np.uint16(1), out=bits, where=crossed & away)
+    np.subtract(bits, np.uint16(1), out=bits, where=crossed & ~away)
     return h

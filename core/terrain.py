@@ -18,7 +18,7 @@ from core.heights import (
     ground_planes,
 )
 from core.lod import ALL_IN
-from core.quadtree import QuadTree
+from core.quadtree import QuadTree, half_outward
 from core.tiling import mirror_sign, noise_map
 
 # A (macro-)cell to draw, one float64 row: first cell (x0, z0), size in cells, its ground's
@@ -44,9 +44,9 @@ class Terrain:
     # the design stack's height map (rows along z, values 0 … 1) times height_scale (6.4.4)
     heights: np.ndarray | None = None
     height_scale: float = 0.0
+    # the ground's height range per node, the cells its level 0 (half floats rounded outward:
+    # the ranges stay bounds, and a 4096² terrain keeps no float32 copy of them besides)
     tree: QuadTree = field(init=False)
-    cell_min: np.ndarray = field(init=False)  # (columns, rows) lowest ground per cell
-    cell_max: np.ndarray = field(init=False)
     # a bound on the ground's bends, each cell's own (core/heights.py cell_curvature), and
     # their maxima over blocks of 2 × 2, 4 × 4, … cells up to the whole terrain
     bends: list[np.ndarray] = field(init=False)
@@ -60,19 +60,35 @@ class Terrain:
             raise ValueError(f"height scale {self.height_scale:g} must not be negative")
         if self.heights is not None and self.height_scale > 0:
             lo, hi = cell_ranges(self.heights, self.height_scale, self.columns, self.rows)
+        else:
+            lo = hi = np.zeros((self.columns, self.rows), np.float32)
+        object.__setattr__(self, "tree", QuadTree.build(self.columns, self.rows, lo, hi))
+        del lo, hi  # before the bends and corners are made: the first frame's peak is lower
+        if self.heights is not None and self.height_scale > 0:
             bends = cell_curvature(self.heights, self.height_scale, self.columns, self.rows)
             corners = corner_deviations(self.heights, self.height_scale, self.columns, self.rows)
         else:
             corners = None
-            lo = hi = np.zeros((self.columns, self.rows), np.float32)
             bends = np.zeros((self.columns, self.rows), np.float32)
-        object.__setattr__(self, "bends", block_maxima(bends))
+        # bounds, kept in half floats rounded up (their maxima are half floats too)
+        object.__setattr__(self, "bends", block_maxima(half_outward(bends, down=False)))
         object.__setattr__(self, "corner_heights", corners)
         object.__setattr__(self, "_planes", {})
-        # C order: the compiled traversal is compiled for that layout once
-        object.__setattr__(self, "cell_min", np.ascontiguousarray(lo, np.float32))
-        object.__setattr__(self, "cell_max", np.ascontiguousarray(hi, np.float32))
-        object.__setattr__(self, "tree", QuadTree.build(self.columns, self.rows, lo, hi))
+
+    @property
+    def cell_min(self) -> np.ndarray:
+        """(columns, rows) float32: each cell's lowest ground (made at each call)."""
+        return self.tree.y_min[0].astype(np.float32)
+
+    @property
+    def cell_max(self) -> np.ndarray:
+        """(columns, rows) float32: each cell's highest ground (made at each call)."""
+        return self.tree.y_max[0].astype(np.float32)
+
+    @property
+    def ground_span(self) -> tuple[float, float]:
+        """The lowest and the highest ground of the whole terrain (the quadtree's root)."""
+        return float(self.tree.y_min[-1][0, 0]), float(self.tree.y_max[-1][0, 0])
 
     @classmethod
     def centred(cls, columns: int, rows: int, **kw) -> Terrain:
@@ -85,7 +101,9 @@ class Terrain:
         ix, iz = np.asarray(ix), np.asarray(iz)
         records = np.zeros((ix.size, 9))
         records[:, X0], records[:, Z0], records[:, SX], records[:, SZ] = ix, iz, sx, sz
-        lo, hi = ground if ground is not None else (self.cell_min[ix, iz], self.cell_max[ix, iz])
+        if ground is None:
+            ground = (self.tree.y_min[0][ix, iz], self.tree.y_max[0][ix, iz])
+        lo, hi = ground
         records[:, Y_LO], records[:, Y_HI] = lo, hi
         records[:, W] = ALL_IN
         return self.instances(records)

@@ -75,8 +75,6 @@ def traverse(
         lv.table,
         frustum is not None,
         cone,
-        terrain.cell_min,
-        terrain.cell_max,
         occupancy is not None,
         _NO_CELLS if occupancy is None else occupancy.packed,
         1 << channel,
@@ -105,13 +103,12 @@ def warm() -> None:
 
 @numba.njit(cache=True)
 def _select(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull,
-            cone, cell_min, cell_max, skip_bare, grows, bit, noise, mirrored):  # fmt: skip
+            cone, skip_bare, grows, bit, noise, mirrored):  # fmt: skip
     """The walk's records as instances (15 float32s each, INSTANCE_DTYPE's layout), sorted by
     LOD level; where each level's instances begin (and the last ends); the nodes tested. One
     compiled call per traversal: inside a frame on llvmpipe every Python-level step costs."""
     records, visited = _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz,
-                             grass_height, table, cull, cone, cell_min, cell_max, skip_bare,
-                             grows, bit)  # fmt: skip
+                             grass_height, table, cull, cone, skip_bare, grows, bit)  # fmt: skip
     out = np.empty((records.shape[0], 15), np.float32)
     fill_instances(out, records, ox, oz, columns, rows, noise, mirrored)
     bounds = np.searchsorted(records[:, LEVEL], np.arange(table.shape[0] + 1) - 0.5)
@@ -120,7 +117,7 @@ def _select(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_heigh
 
 @numba.njit(cache=True)
 def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height, table, cull, cone,
-          cell_min, cell_max, skip_bare, grows, bit):  # fmt: skip
+          skip_bare, grows, bit):  # fmt: skip
     """Breadth-first from the root: per tree level, the nodes still in play and per node and
     LOD level whether that level still has to decide it (the skip flags of Fig. 6.3). A node is
     culled (sphere + cone), discarded by a level it does not reach, drawn whole as a macro-cell
@@ -165,8 +162,8 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                     if active[i, t]:
                         w, side, inside = _classify(table, t, eye, ox, oz, ix[i], iz[i])
                         if inside:
-                            lo, hi = cell_min[ix[i], iz[i]], cell_max[ix[i], iz[i]]
-                            out, n = _push(out, n, *_record(ix[i], iz[i], 1, 1, lo, hi, t, w, side))
+                            out, n = _push(out, n, *_record(ix[i], iz[i], 1, 1, y_lo[i], y_hi[i],
+                                                             t, w, side))  # fmt: skip
             break
         pairs = np.empty((m * n_lv, 2), np.int64)
         n_pairs = 0

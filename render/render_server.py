@@ -155,7 +155,7 @@ class RenderServer:
             "lod_scale": p.lod_scale,
             "patch_params": [g.patch.params if g.patch else None for g in p.grass_types],
             "height_scale": terrain.height_scale if terrain is not None else 0.0,
-            "terrain_top": float(terrain.cell_max.max()) if terrain is not None else 0.0,
+            "terrain_top": terrain.ground_span[1] if terrain is not None else 0.0,
             "prop_boxes": p.props.boxes.copy(),
             # the document this process draws, as a project file holds it
             "document": document_data(self.document) if self.document is not None else None,

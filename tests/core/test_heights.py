@@ -247,6 +247,26 @@ def test_cell_curvature_is_the_ground_s_bound_cell_by_cell():
     assert np.all(flat == 0.0)
 
 
+def test_a_terrain_keeps_its_ranges_and_bends_in_half_floats_that_stay_bounds():
+    """A 4096² terrain keeps each cell's ground range and bend for its life: in half floats
+    (the quadtree's leaves are the ranges, no float32 copy beside them), each rounded outward,
+    so every instance's ground still encloses the surface and every bend still bounds it."""
+    heights = hills(64, seed=2)
+    scale = 40.0  # a landscape's heights, where a half float's step is hundredths of a unit
+    lo, hi = cell_ranges(heights, scale, 30, 20)
+    bends = cell_curvature(heights, scale, 30, 20)
+    terrain = Terrain(30, 20, heights=heights, height_scale=scale)
+    assert terrain.tree.y_min[0].dtype == np.float16 and terrain.bends[0].dtype == np.float16
+    cells = terrain.all_cells()
+    ix, iz = terrain.blocks_of(cells)[:2]
+    ground = cells["ground"]
+    assert np.all(ground[:, 0] <= lo[ix, iz])
+    assert np.all(ground[:, 0] + ground[:, 1] >= hi[ix, iz] - 1e-4 * scale)
+    assert np.all(lo[ix, iz] - ground[:, 0] < 0.05)  # and close: a half float's step is 1/32
+    assert np.all(terrain.curvature_of(cells) >= bends[ix, iz])
+    assert terrain.curvature >= bends.max()
+
+
 def test_ground_mesh_levels_halve_in_whole_chunks_and_each_is_sunk_on_its_own():
     from core.ground_mesh import GROUND_CHUNKS, chunk_deviation, mesh_levels
 
