@@ -67,10 +67,15 @@ class _ForkServer:
         return forked
 
     def settle(self) -> None:
-        """Read the pids of the forks asked for (they answer in order)."""
-        while self.pending:
-            self.pending[0].known_pid = int(self._reply()["pid"])
-            self.pending.popleft()
+        """Read the pids of the forks asked for (they answer in order). If the server ended
+        or stopped answering first, those never started: they count as ended (exit 1)."""
+        try:
+            while self.pending:
+                self.pending[0].known_pid = int(self._reply()["pid"])
+                self.pending.popleft()
+        except (OSError, ValueError, KeyError):
+            while self.pending:
+                self.pending.popleft().never_started()
 
     def status(self, pid: int) -> int | None:
         """The exit status of the child `pid`, which has ended (None if it cannot be known)."""
@@ -98,30 +103,39 @@ class Forked:
         assert self.known_pid is not None
         return self.known_pid
 
+    def never_started(self) -> None:
+        self.known_pid, self.returncode = 0, 1
+
     def _ended(self, timeout: float | None) -> bool:
+        """Whether it has ended, waiting up to `timeout`; its exit status read if so."""
+        pid = self.pid
+        if self.returncode is not None:
+            return True  # never started, or read before
         if self._pidfd is None:
             try:
-                self._pidfd = os.pidfd_open(self.pid)
+                self._pidfd = os.pidfd_open(pid)
             except ProcessLookupError:
-                return True  # reaped already (its server ended)
-        return bool(select.select([self._pidfd], [], [], timeout)[0])
+                self._finish()  # reaped already (its server ended)
+                return True
+        if not select.select([self._pidfd], [], [], timeout)[0]:
+            return False
+        self._finish()
+        return True
 
     def poll(self) -> int | None:
         if self.known_pid is None:
             return None  # being forked still (the server's imports first)
-        if self.returncode is None and self._ended(0.0):
-            self._finish()
+        self._ended(0.0)
         return self.returncode
 
     def wait(self, timeout: float | None = None) -> int:
-        while self.returncode is None:
-            if not self._ended(timeout):
-                raise subprocess.TimeoutExpired(f"render process {self.pid}", timeout or 0.0)
-            self._finish()
+        if not self._ended(timeout):
+            raise subprocess.TimeoutExpired(f"render process {self.pid}", timeout or 0.0)
+        assert self.returncode is not None
         return self.returncode
 
     def kill(self) -> None:
-        if self.returncode is None:
+        if self.returncode is None and self.pid > 0:
             with contextlib.suppress(ProcessLookupError):
                 os.kill(self.pid, signal.SIGKILL)
 

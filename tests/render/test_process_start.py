@@ -100,3 +100,21 @@ def test_render_processes_are_forked_from_one_that_did_the_imports(tmp_path):
     third_conn.send(msg.Quit())
     assert third.wait(timeout=30) == 0
     third_conn.close()
+
+
+def test_a_fork_server_gone_before_it_answered_leaves_no_hang(tmp_path):
+    """The fork server dies before it forked what was asked (its imports broken, killed): the
+    window's process counts that render process as ended, and the next one starts."""
+    process, mine = process_start.spawn(process_start.DRAFT, str(tmp_path), "SWARD_SHARED_SUMS")
+    server = process_start._server
+    assert server is not None and process.poll() is None  # being forked: its imports first
+    server.process.kill()
+    server.process.wait()
+    assert process.wait(timeout=30) == 1 and process.poll() == 1
+    process.kill()  # nothing to kill: no error
+    assert mine.recv(1) == b""  # nobody holds the other end
+    mine.close()
+    again, again_conn = _started(process_start.DRAFT, tmp_path)
+    again.kill()
+    assert again.wait(timeout=30) == -9
+    again_conn.close()
