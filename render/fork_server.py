@@ -37,6 +37,16 @@ def _warm() -> None:
     core.noise.perlin2d(np.zeros((2, 2)), np.zeros((2, 2)), 1, 0)
 
 
+def _name(name: str) -> None:
+    """The name `top` and `ps -o comm` show for this process (its command line stays the fork
+    server's): a render process by its role rather than as the server it came from."""
+    try:
+        with open("/proc/self/comm", "w") as comm:
+            comm.write(name[:15])
+    except OSError:
+        pass  # not Linux, or not allowed: the name stays
+
+
 def _serve_child(request: dict, fd: int, server: socket.socket) -> None:
     """In the child: the render process of the request's role, to its end."""
     from multiprocessing.connection import Connection
@@ -44,6 +54,7 @@ def _serve_child(request: dict, fd: int, server: socket.socket) -> None:
     from render.render_server import serve
 
     server.close()
+    _name(f"sward-{request['role']}")
     os.environ.clear()
     os.environ.update(request["env"])
     serve(Connection(fd), request["role"])
@@ -51,6 +62,7 @@ def _serve_child(request: dict, fd: int, server: socket.socket) -> None:
 
 def main(fd: int) -> None:
     server = socket.socket(fileno=fd)
+    _name("sward-forks")
     try:
         _warm()
         while True:

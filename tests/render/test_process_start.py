@@ -86,6 +86,9 @@ def test_render_processes_are_forked_from_one_that_did_the_imports(tmp_path):
     second, second_conn = _started(process_start.FULL, tmp_path)
     assert process_start._server is server and _parent(second.pid) == server.process.pid
     assert second.pid != first.pid and first.poll() is None
+    # `top` names each by its role, not as the fork server
+    assert Path(f"/proc/{first.pid}/comm").read_text().strip() == "sward-draft"
+    assert Path(f"/proc/{second.pid}/comm").read_text().strip() == "sward-full"
     first.kill()
     assert first.wait(timeout=30) == -9  # what the window shows: "killed by signal 9"
     second_conn.send(msg.Quit())
