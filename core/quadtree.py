@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 
@@ -144,3 +145,18 @@ def half_outward(a: np.ndarray, down: bool) -> np.ndarray:
     np.add(bits, np.uint16(1), out=bits, where=crossed & away)
     np.subtract(bits, np.uint16(1), out=bits, where=crossed & ~away)
     return h
+
+
+@numba.njit(cache=True)
+def half_value(bits):
+    """The float32 value of a half float's bit pattern (numba reads no float16 arrays; a
+    lookup table of all 65536 values was slower, a cache miss per node)."""
+    b = np.int64(bits)
+    exponent, mantissa = (b >> 10) & 0x1F, b & 0x3FF
+    if exponent == 0:
+        value = math.ldexp(float(mantissa), -24)
+    elif exponent == 31:
+        value = math.inf if mantissa == 0 else math.nan
+    else:
+        value = math.ldexp(float(mantissa + 1024), exponent - 25)
+    return np.float32(-value if b >> 15 else value)

@@ -9,13 +9,13 @@ import numba
 import numpy as np
 
 from core.grid import INSTANCE_DTYPE
+from core.ground_planes import ground_planes
 from core.heights import (
     block_maxima,
     blocks_max,
     cell_curvature,
     cell_ranges,
     corner_deviations,
-    ground_planes,
 )
 from core.lod import ALL_IN
 from core.quadtree import QuadTree, half_outward
@@ -139,7 +139,7 @@ class Terrain:
     def planes_of(self, instances: np.ndarray) -> np.ndarray:
         """Per instance (INSTANCE_DTYPE), (n, 4) float32: the ground's slope along x and z per
         cell and the lowest and highest ground over that plane, relative to the instance's
-        lowest ground (core/heights.py ground_planes), where the two planes lie closer than
+        lowest ground (core/ground_planes.py), where the two planes lie closer than
         its height range; elsewhere (and on flat ground) (0, 0, 0, height range): the range.
         The planes of every block of a size at every position the quadtree puts one are made
         once, when a frame first draws a block of that size."""

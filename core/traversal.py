@@ -12,7 +12,6 @@ operations per tree level the overhead of each call would be most of a traversal
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numba
@@ -24,6 +23,7 @@ from core.grid import INSTANCE_DTYPE
 from core.lod import ALL_IN, LodConfig
 from core.lod_criteria import Levels
 from core.occupancy import DensityOccupancy
+from core.quadtree import half_value
 from core.terrain import LEVEL, SIDE, SX, SZ, X0, Y_HI, Y_LO, Z0, Terrain, W, fill_instances
 
 
@@ -144,8 +144,8 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
         y_hi = np.empty(m, np.float32)
         for i in range(m):
             k = base + ix[i] * nz + iz[i]
-            y_lo[i] = _half(lo16[k])
-            y_hi[i] = _half(hi16[k])
+            y_lo[i] = half_value(lo16[k])
+            y_hi[i] = half_value(hi16[k])
             if skip_bare and not grows[k] & bit:
                 for t in range(n_lv):
                     active[i, t] = False
@@ -216,21 +216,6 @@ def _walk(lo16, hi16, offsets, shapes, columns, rows, eye, ox, oz, grass_height,
                     )
         ix, iz, active = _children(ix, iz, active, keep, shapes[level - 1, 0], shapes[level - 1, 1])
     return _by_level(out[:n], n_lv), visited
-
-
-@numba.njit(cache=True)
-def _half(bits):
-    """The float32 value of a half float's bit pattern (numba reads no float16 arrays; a
-    lookup table of all 65536 values was slower, a cache miss per node)."""
-    b = np.int64(bits)
-    exponent, mantissa = (b >> 10) & 0x1F, b & 0x3FF
-    if exponent == 0:
-        value = math.ldexp(float(mantissa), -24)
-    elif exponent == 31:
-        value = math.inf if mantissa == 0 else math.nan
-    else:
-        value = math.ldexp(float(mantissa + 1024), exponent - 25)
-    return np.float32(-value if b >> 15 else value)
 
 
 @numba.njit(cache=True)

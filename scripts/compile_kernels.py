@@ -31,6 +31,7 @@ def main() -> None:
     frustum = Frustum.from_view(eye, (4.0, 0.0, 4.0), 50.0, 1.5, 0.1, 100.0)
     traverse(terrain, eye, LodConfig(), frustum, occupancy, 0)
     terrain.cells(np.arange(2), np.arange(2))
+    terrain.planes_of(terrain.cells(np.arange(2), np.arange(2)))  # core/ground_planes.py
     mirror_bits(np.zeros((1, 2)))
     # the patch conversion's mip chains (hills above compiled the noise)
     build_mips_stack(np.zeros((1, 4, 4, 4), np.float32))

@@ -69,11 +69,13 @@ def test_a_quality_target_and_apply_write_the_chosen_levels_into_the_project(tmp
     assert r.returncode == 0, r.stderr
     assert f"wrote the chosen LOD setting into {project}" in r.stdout
     after = load_project(project).lod(0)
-    # every setting reaches FLIP 0.9: the cheapest of them is written, not the shipped one
-    assert after != before
+    # every setting reaches FLIP 0.9: the cheapest of them is written. Which one that is
+    # depends on this machine's timings (beside another test's frames the shipped setting may
+    # measure cheapest); the levels written are the chosen one's whichever it is
     report = json.loads((tmp_path / "t" / "tune.json").read_text())
     chosen = report["candidates"][report["chosen"]]
     assert chosen["cost_ms"] <= report["shipped"]["cost_ms"]
+    assert (after != before) == (chosen["knobs"] != report["shipped"]["knobs"])
     written = [dataclasses.asdict(level) for level in after.levels]
     assert [{k: v for k, v in level.items() if v is not None} for level in written] == [
         {k: v for k, v in level.items() if v is not None} for level in report["chosen_lods"][0]

@@ -1,4 +1,4 @@
-"""The volume cuboids on a slope (core/heights.py ground_planes, core/terrain.py planes_of): the
+"""The volume cuboids on a slope (core/ground_planes.py, core/terrain.py planes_of): the
 two planes hold the ground of their block wherever it is, and on a slope they lie closer than
 the block's height range."""
 
@@ -6,11 +6,11 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from core.ground_planes import ground_planes
 from core.heights import (
     bilinear,
     cell_ranges,
     corner_deviations,
-    ground_planes,
     hills,
 )
 from core.quadtree import half_outward
