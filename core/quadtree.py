@@ -132,19 +132,49 @@ def reduce_2x2(a: np.ndarray, op, fill) -> np.ndarray:
 
 
 def half_outward(a: np.ndarray, down: bool) -> np.ndarray:
-    """float16 copy of `a`, each value rounded towards -inf (down) or +inf where rounding to
-    the nearest would cross it: a bound stays a bound. The step is one on the half float's bit
-    pattern, away from zero on the side rounded towards and towards it on the other (numpy's
-    nextafter on float16 is emulated and costs several times the conversion)."""
-    with np.errstate(over="ignore"):  # beyond the largest half float: inf, then one back
-        h = np.asarray(a).astype(np.float16)
-    crossed = h > a if down else h < a
-    bits = h.view(np.uint16)
-    negative = bits >= 0x8000  # astype keeps the sign of a value that rounds to zero
-    away = negative if down else ~negative
-    np.add(bits, np.uint16(1), out=bits, where=crossed & away)
-    np.subtract(bits, np.uint16(1), out=bits, where=crossed & ~away)
-    return h
+    """float16 copy of `a`, each value rounded towards -inf (down) or +inf: the largest half
+    float ≤ it or the smallest ≥ it, so that a bound stays a bound. One compiled pass (numpy
+    rounds to float16 through an emulated conversion, and its nextafter is slower still)."""
+    a = np.ascontiguousarray(a)
+    if a.dtype not in (np.float32, np.float64):
+        a = a.astype(np.float64)
+    out = np.empty(a.shape, np.uint16)
+    _half_outward(a.reshape(-1), down, out.reshape(-1))
+    return out.view(np.float16)
+
+
+@numba.njit(cache=True, parallel=True)
+def _half_outward(values, down, out):
+    for i in numba.prange(values.shape[0]):
+        out[i] = _half_bits(values[i], down)
+
+
+@numba.njit(cache=True, inline="always")
+def _half_bits(value, down):
+    """The bit pattern of the half float next to `value` towards -inf (down) or +inf. In
+    float64, where a float32 and every half float and half-float step are exact: the magnitude
+    counted in steps of its binade (2^-24 below the normal range), that count rounded down or
+    up, and the count and binade written as a half float (a count of 2048 is the next binade's
+    first value, 1024 below the normal range the smallest normal value)."""
+    x = np.float64(value)
+    if x != x:
+        return np.uint16(0x7E00)
+    sign = 0x8000 if (x < 0.0 or (x == 0.0 and math.copysign(1.0, x) < 0.0)) else 0
+    magnitude = abs(x)
+    larger = down == (sign != 0)  # the magnitude rounded up: towards the side of its sign
+    if magnitude == math.inf:
+        return np.uint16(sign | 0x7C00)
+    _, e = math.frexp(magnitude)  # magnitude = m 2^e, 0.5 ≤ m < 1: its binade is 2^(e-1)
+    binade = max(e - 1, -14)  # below 2^-14 the subnormal steps, 2^-24
+    steps = magnitude / math.ldexp(1.0, binade - 10)
+    n = np.int64(math.ceil(steps) if larger else math.floor(steps))
+    if magnitude < 2.0**-14:
+        return np.uint16(sign | n)
+    if n == 2048:
+        n, binade = 1024, binade + 1
+    if binade > 15:
+        return np.uint16(sign | (0x7C00 if larger else 0x7BFF))
+    return np.uint16(sign | ((binade + 15) << 10) | (n - 1024))
 
 
 @numba.njit(cache=True)

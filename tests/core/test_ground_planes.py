@@ -72,6 +72,27 @@ def test_planes_are_closer_than_the_range_on_hills():
     assert thickness.mean() < 0.6 * cells["ground"][:, 1].mean()
 
 
+def test_half_outward_is_the_next_half_float_either_way():
+    """Every half float stays itself; a value between two neighbours goes to the lower one
+    down and the upper one up, in float32 and float64, subnormals, zeros and the largest
+    value included (beyond it: the largest down, infinity up)."""
+    halves = np.arange(0, 65536, dtype=np.uint16).view(np.float16)
+    halves = halves[np.isfinite(halves)]
+    for dtype in (np.float32, np.float64):
+        exact = halves.astype(dtype)
+        for down in (True, False):
+            got = half_outward(exact, down=down)
+            assert np.array_equal(got.view(np.uint16), halves.view(np.uint16))
+    ordered = np.unique(halves.astype(np.float64))  # -0 and +0 as one
+    between = 0.5 * (ordered[:-1] + ordered[1:])
+    for dtype in (np.float32, np.float64):
+        assert np.array_equal(half_outward(between.astype(dtype), down=True), ordered[:-1])
+        assert np.array_equal(half_outward(between.astype(dtype), down=False), ordered[1:])
+    beyond = np.array([65519.0, -65519.0, 1e6], np.float32)
+    assert half_outward(beyond, down=True).tolist() == [65504.0, -np.inf, 65504.0]
+    assert half_outward(beyond, down=False).tolist() == [np.inf, -65504.0, np.inf]
+
+
 def test_deviations_kept_in_half_precision_stay_bounds():
     """The per-cell deviations are kept in float16 (half the memory of a 4096² terrain's two
     tables): each is rounded away from the ground it bounds, never across it."""
