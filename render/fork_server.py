@@ -17,10 +17,13 @@ It ends when the window's end of the pair closes.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import socket
 import sys
+import traceback
+from typing import NoReturn
 
 MAX_REQUEST = 1 << 20  # bytes: an environment is far smaller
 
@@ -60,6 +63,28 @@ def _serve_child(request: dict, fd: int, server: socket.socket) -> None:
     serve(Connection(fd), request["role"])
 
 
+def _child(request: dict, fd: int, server: socket.socket) -> NoReturn:
+    """The forked child's life: its render process, then its exit with the status `python -m
+    render.render_server` would end with (1 and the traceback on stderr for an error). It
+    leaves through os._exit, as multiprocessing's forked children do: the interpreter's own
+    exit would run the fork server's exit handlers and tear down the GL driver and every
+    module object one by one, work for a process that is ending anyway (most of what a closing
+    window waits for)."""
+    code = 0
+    try:
+        _serve_child(request, fd, server)
+    except SystemExit as stop:
+        code = stop.code if isinstance(stop.code, int) else int(stop.code is not None)
+    except BaseException:
+        traceback.print_exc()
+        code = 1
+    finally:
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        os._exit(code)
+
+
 def main(fd: int) -> None:
     server = socket.socket(fileno=fd)
     _name("sward-forks")
@@ -80,8 +105,7 @@ def main(fd: int) -> None:
                 continue
             pid = os.fork()
             if pid == 0:
-                _serve_child(request, fds[0], server)
-                sys.exit(0)  # through the interpreter's own exit, as a process of its own
+                _child(request, fds[0], server)
             for received in fds:
                 os.close(received)
             server.send(json.dumps({"pid": pid}).encode())

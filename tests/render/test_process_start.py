@@ -124,3 +124,18 @@ def test_a_fork_server_gone_before_it_answered_leaves_no_hang(tmp_path):
     again.kill()
     assert again.wait(timeout=30) == -9
     again_conn.close()
+
+
+def test_a_forked_render_process_that_fails_says_why_and_ends_with_status_1(tmp_path):
+    """An error inside a forked render process (here a message that is none): the window gets
+    its traceback and the process ends with status 1, as a process of its own would; one that
+    quits ends with 0 (above)."""
+    from render import protocol as msg
+
+    process, conn = _started(process_start.FULL, tmp_path)
+    conn.send_bytes(b"not a message")
+    assert conn.poll(30)
+    failed = conn.recv()
+    assert isinstance(failed, msg.Failed) and "Traceback" in failed.traceback
+    assert process.wait(timeout=30) == 1
+    conn.close()
