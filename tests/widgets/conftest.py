@@ -81,6 +81,11 @@ def no_leaked_windows(request):
     assert not leaked, f"windows left open: {[type(w).__name__ for w in leaked]}"
 
 
+# the viewport 614 × 479 beside the docks: a test's frames cost what its pixels cost on
+# llvmpipe, and most tests need a picture, not a large one
+WINDOW_SIZE = (1000, 520)
+
+
 @pytest.fixture
 def window(qtbot, tmp_path, monkeypatch):
     from PySide6.QtWidgets import QMessageBox
@@ -97,7 +102,7 @@ def window(qtbot, tmp_path, monkeypatch):
     scene = type(scene)(**{**scene.__dict__, "params": scene.params.replace(blade_count=600)})
     win = keep(DesignerWindow(scene.document()))
     win.autosave.directory = tmp_path / "autosave"
-    win.resize(1300, 640)
+    win.resize(*WINDOW_SIZE)
     win.show()
     qtbot.waitExposed(win)
     wait_full(win)

@@ -497,6 +497,7 @@ def test_while_the_wind_moves_on_drafts_the_status_line_says_so(window, qtbot):
     from app.scenes import get_scene
     from tests.widgets.conftest import wait_full
 
+    window.resize(1300, 640)  # the meadow's full frames at a size where they are slow
     window.open_document(get_scene("meadow").document())
     wait_full(window)
     vp = window.viewport

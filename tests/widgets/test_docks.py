@@ -10,6 +10,7 @@ pytestmark = pytest.mark.gui
 
 
 def test_the_map_grows_when_its_dock_is_made_taller(window, qtbot):
+    window.resize(1300, 640)  # room for the dock to grow into
     window.map_dock.raise_()
     qtbot.waitUntil(window.map_view.isVisible)
     before = window.map_view.height()
