@@ -6,7 +6,10 @@ the share the shadows add to t_a; and across the hand-over from the blades to th
 frame's row by row, against two yardsticks of blade detail: the all-geometry frame a blade's
 width to the side, and the same grass with two other aperiodic tilings; and how far it strays
 once each of its rows is scaled to the share of ground the all-geometry frame's row shows
-(what of the stray is the grass covering more or less of the ground, not the shadows).
+(what of the stray is the grass covering more or less of the ground, not the shadows); and,
+for scale, how far the all-geometry frame's own rows stray from their running mean over five
+rows: what a far grass that darkens each row as the blades do on average, without their
+row-to-row detail, would stray by.
 
 Run: `sward bench --suite shadows --out results.json`.
 """
@@ -118,12 +121,16 @@ def _hand_over(scene: str, name: str) -> dict:
     def strays(a, b) -> float:
         return float(np.abs(a - b)[band].mean())
 
+    k = 5  # rows: each row's darkening the mean of the rows around it
+    smoothed = np.convolve(np.pad(geometry, k // 2, mode="edge"), np.ones(k) / k, "valid")
+
     return {
         "name": f"{scene}_{name}_hand_over",
         "rows_lod": strays(lod, geometry),
         "rows_lod_same_ground": strays(same_ground, geometry),
         "rows_shifted": strays(side, geometry),
         "rows_tilings": max(strays(tilings[0], geometry), strays(tilings[1], geometry)),
+        "rows_smoothed": strays(smoothed, geometry),
         "volume_side": float(lod[band[volume[band] > 0.5]].mean()),
         "volume_side_geometry": float(geometry[band[volume[band] > 0.5]].mean()),
         "blades_side": float(lod[band[blades[band] > 0.2]].mean()),
