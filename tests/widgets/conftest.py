@@ -81,8 +81,8 @@ def no_leaked_windows(request):
     assert not leaked, f"windows left open: {[type(w).__name__ for w in leaked]}"
 
 
-# the viewport 614 × 479 beside the docks: a test's frames cost what its pixels cost on
-# llvmpipe, and most tests need a picture, not a large one
+# a small viewport beside the docks: a test's frames cost what its pixels cost on llvmpipe,
+# and most tests need a picture, not a large one (those that need room make their own)
 WINDOW_SIZE = (1000, 520)
 
 
