@@ -24,6 +24,7 @@ import traceback
 from dataclasses import replace
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from core.design_maps import LAYER_INDEX, LAYERS
 from core.project_file import document_data, document_from_data
@@ -327,6 +328,10 @@ def serve(conn, role: str) -> None:
     """The process's work: answer `conn` until the window quits or goes away."""
     if role == FULL:
         os.nice(FULL_NICE)  # before the GL context: llvmpipe's threads inherit it
+    # The designer runs two render processes side by side: each keeps its BLAS (the light sums'
+    # matrix products) to half the cores. With every core each, the draft's products took the
+    # cores from the niced full process while it built the sums its first frame waits for.
+    threadpool_limits(limits=max(1, (os.cpu_count() or 2) // 2), user_api="blas")
     try:
         server = RenderServer(conn, role)
         size = int(server.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
