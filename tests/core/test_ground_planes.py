@@ -59,12 +59,9 @@ def test_planes_are_closer_than_the_range_on_hills():
     terrain = Terrain(48, 48, heights=hills(256, seed=7, period=3), height_scale=3.0)
     ix, iz = np.meshgrid(np.arange(0, 48, 4), np.arange(0, 48, 4), indexing="ij")
     ix, iz = ix.ravel(), iz.ravel()
-    lo = np.array(
-        [terrain.cell_min[a : a + 4, b : b + 4].min() for a, b in zip(ix, iz, strict=True)]
-    )
-    hi = np.array(
-        [terrain.cell_max[a : a + 4, b : b + 4].max() for a, b in zip(ix, iz, strict=True)]
-    )
+    cell_min, cell_max = terrain.cell_min, terrain.cell_max  # each a copy made per call
+    lo = np.array([cell_min[a : a + 4, b : b + 4].min() for a, b in zip(ix, iz, strict=True)])
+    hi = np.array([cell_max[a : a + 4, b : b + 4].max() for a, b in zip(ix, iz, strict=True)])
     cells = terrain.cells(ix, iz, 4, 4, ground=(lo, hi))
     planes = terrain.planes_of(cells)
     thickness = planes[:, 3] - planes[:, 2]

@@ -162,12 +162,9 @@ def test_slice_grids_keep_their_chords_within_a_pixel_of_the_ground(distance, si
     terrain = Terrain.centred(24, 24, heights=heights, height_scale=3.0)
     ix, iz = np.meshgrid(np.arange(0, 24, 2 * size), np.arange(0, 24, 2 * size), indexing="ij")
     ix, iz = ix.ravel(), iz.ravel()
-    lo = np.array(
-        [terrain.cell_min[x : x + size, z : z + size].min() for x, z in zip(ix, iz, strict=True)]
-    )
-    hi = np.array(
-        [terrain.cell_max[x : x + size, z : z + size].max() for x, z in zip(ix, iz, strict=True)]
-    )
+    cell_min, cell_max = terrain.cell_min, terrain.cell_max  # each a copy made per call
+    lo = np.array([cell_min[x : x + size, z : z + size].min() for x, z in zip(ix, iz, strict=True)])
+    hi = np.array([cell_max[x : x + size, z : z + size].max() for x, z in zip(ix, iz, strict=True)])
     singles = terrain.cells(ix, iz, size, size, ground=(lo, hi))
     eye = np.array([0.0, 3.0 + distance, -12.0 - distance])
     pixel = 2.0 * np.tan(np.radians(25.0)) / 270
