@@ -9,13 +9,20 @@ $(STAMP): pyproject.toml
 	@bash scripts/python-env.sh $(VENV)
 	@touch $(STAMP)
 
-setup: $(STAMP)
+# the numba kernels compiled once into their cache (scripts/compile_kernels.py)
+KERNELS := $(VENV)/.sward-kernels
+$(KERNELS): $(STAMP)
+	@echo "sward setup: compiling the numba kernels (once)"
+	@$(PY) scripts/compile_kernels.py
+	@touch $(KERNELS)
+
+setup: $(KERNELS)
 
 # the optional extras (sward[cluster]: Ray, sward[usd]: usd-core) stay out of `make run`;
 # their tests need them
 EXTRAS := $(VENV)/.sward-extras
 $(EXTRAS): $(STAMP)
-	$(PY) -m pip install --quiet -e '.[test,cluster,usd]'
+	@bash scripts/python-env.sh $(VENV) test,cluster,usd
 	@touch $(EXTRAS)
 
 system-deps:
@@ -24,7 +31,7 @@ system-deps:
 test-deps:  # the designer's, and Node.js for the glTF validator
 	@bash scripts/system-deps.sh test
 
-run: system-deps $(STAMP)
+run: system-deps $(KERNELS)
 	$(VENV)/bin/sward
 
 lint: $(STAMP)
@@ -39,7 +46,9 @@ VALIDATOR := $(VENV)/node/node_modules/gltf-validator/package.json
 $(VALIDATOR):
 	npm install --silent --no-audit --no-fund --prefix $(VENV)/node gltf-validator@2.0.0-dev.3.10
 
-test: test-deps lint $(EXTRAS) $(VALIDATOR)
+test: test-deps $(EXTRAS) $(VALIDATOR)
+	# the linters and the kernels' compile, one core each, side by side
+	@$(MAKE) --no-print-directory -j2 --output-sync=target lint $(KERNELS)
 	$(VENV)/bin/sward info
 	# core/ and the designer's controllers with Qt and GL unimportable (tests/blocked.py)
 	$(PY) -m pytest -n 2 -p tests.blocked -p no:pytest-qt -p no:xvfb tests/core tests/app

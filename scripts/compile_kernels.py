@@ -1,7 +1,8 @@
 """Compiles Sward's numba kernels into their on-disk cache (__pycache__ beside each module), once
 per install: without it the first traversal or patch conversion of a fresh install, in the
-designer or a test, waits ~20 s for the compiler on a 2-core machine. scripts/python-env.sh runs it after installing; a kernel whose
-source changed later compiles again on its first call."""
+designer or a test, waits ~20 s for the compiler on a 2-core machine. `make run`, `make setup`
+and `make test` run it once a virtual environment (`make test` beside the linters); a kernel
+whose source changed later compiles again on its first call."""
 
 import time
 
