@@ -167,6 +167,10 @@ class GrassViewport(QWidget):
 
     @property
     def max_image_size(self) -> int:
+        """The largest side the full-quality renderer draws; a renderer that has not said it
+        yet (just started, or started again) is waited for, handling the window's events."""
+        if self.renderer.max_image_size <= 0:
+            wait_until(lambda: self.renderer.max_image_size > 0, IMAGE_TIMEOUT_S)
         return self.renderer.max_image_size
 
     # -- frames --------------------------------------------------------------------------------

@@ -88,6 +88,9 @@ WINDOW_SIZE = (1000, 520)
 
 @pytest.fixture
 def window(qtbot, tmp_path, monkeypatch):
+    """The designer as a person meets it: shown, its first frames still on their way (a test
+    that needs a picture waits for it: grab, wait_full; one that edits first spares the
+    render processes a full frame nobody looks at)."""
     from PySide6.QtWidgets import QMessageBox
 
     QSettings.setPath(QSettings.Format.NativeFormat, QSettings.Scope.UserScope, str(tmp_path))
@@ -105,7 +108,6 @@ def window(qtbot, tmp_path, monkeypatch):
     win.resize(*WINDOW_SIZE)
     win.show()
     qtbot.waitExposed(win)
-    wait_full(win)
     yield win
     win.close()
 

@@ -248,6 +248,29 @@ def test_an_image_larger_than_the_window_is_drawn_at_that_size(window, qtbot, tm
     assert coverage(big) > 0.2
 
 
+def test_an_image_saved_as_the_window_opens_waits_for_its_renderer(window, tmp_path):
+    """File → Save image before the render processes have said how large they draw (just
+    after the window opened): the image is drawn once they have, not refused as larger than
+    a GPU that draws 0 pixels."""
+    from PIL import Image
+
+    from app.designer import DesignerWindow
+    from app.image_output import save_image
+    from app.scenes import get_scene
+
+    other = keep(DesignerWindow(get_scene("patch-grid").document()))
+    other.autosave.directory = tmp_path / "other"
+    other.resize(800, 480)
+    other.show()
+    assert other.viewport.renderer.max_image_size == 0  # not said yet
+    path = tmp_path / "at_once.png"
+    assert save_image(other, str(path))
+    with Image.open(path) as image:
+        assert image.size == (other.viewport.width(), other.viewport.height())
+        assert coverage(np.asarray(image.convert("RGB"))) > 0.2
+    other.close()
+
+
 def test_the_light_panel_relights_the_grass_undoably_and_is_saved(window, qtbot, tmp_path):
     from core.project_file import load_project
 
