@@ -52,10 +52,9 @@ def test_workers_draw_the_references_and_candidates_and_the_run_gathers_them(tmp
     env = {**os.environ, "SWARD_CACHE": str(cache)}
     small = whole_segments(tmp_path)
     r = sward("tune", *small, "--candidates", "16", "--workers", "2", "--out", str(out), env=env)
+    # (a later run reads the references kept here as a run without workers does:
+    # tests/test_tune_cli.py)
     _check_sweep(r, out, cache, "2 local processes")
-    again = sward("tune", *small, "--candidates", "2", "--workers", "2", env=env)
-    assert again.returncode == 0, again.stderr
-    assert "references 0 drawn, 4 reused" in again.stdout
 
 
 def _free_port() -> int:
