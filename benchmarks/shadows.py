@@ -9,7 +9,9 @@ once each of its rows is scaled to the share of ground the all-geometry frame's 
 (what of the stray is the grass covering more or less of the ground, not the shadows); and,
 for scale, how far the all-geometry frame's own rows stray from their running mean over five
 rows: what a far grass that darkens each row as the blades do on average, without their
-row-to-row detail, would stray by.
+row-to-row detail, would stray by. And what the volume alone covers against the blades alone
+at densities 0.3, 0.6 and 1 (shadows off): per image row the share of ground each lets through,
+the geometric mean over the rows of volume over blades (above 1: the volume shows more ground).
 
 Run: `sward bench --suite shadows --out results.json`.
 """
@@ -52,21 +54,64 @@ def run() -> list[dict]:
                 row[f"{label}_{part}"] = statistics.median(times[shadows][part])
         row["added_t_a_percent"] = 100.0 * (row["on_t_a_ms"] / row["off_t_a_ms"] - 1.0)
         rows.append(row)
-    return rows + [
-        _hand_over(scene, name) for scene, name in (("bench", "zones"), ("meadow", "path"))
-    ]
+    hand_overs = (("bench", "zones"), ("meadow", "path"))
+    return (
+        rows
+        + [_hand_over(scene, name) for scene, name in hand_overs]
+        + [_cover(scene, name) for scene, name in hand_overs]
+    )
+
+
+def _ground(document, camera, mode: str, size: tuple[int, int]):
+    """Per image row, the share of the ground it shows: the ground drawn white and then black
+    (shadows off), the difference over white."""
+    import numpy as np
+
+    import render.ground as ground_module
+    from render.headless import HeadlessRenderer
+    from render.shaders import load_program
+
+    document.light = dataclasses.replace(document.light, blade_shadows=False)
+    frames = []
+    for level in (1.0, 0.0):
+        ground_module.load_program = _ground_loader(level)
+        try:
+            with HeadlessRenderer(document, mode=mode) as renderer:
+                frames.append(renderer.render(camera, size, measure=False)[0].astype(float))
+        finally:
+            ground_module.load_program = load_program
+    return np.asarray(((frames[0] - frames[1]) / 255.0).mean(axis=(1, 2)))
+
+
+def _cover(scene: str, name: str) -> dict:
+    """The volume alone against the blades alone: per density, the geometric mean over the
+    rows where both show some ground and the blades not all of it of the ratio of the ground
+    each lets through."""
+    import numpy as np
+
+    from app.scenes import get_scene
+
+    row: dict = {"name": f"{scene}_{name}_cover"}
+    for density in (0.3, 0.6, 1.0):
+        document = get_scene(scene).document()
+        document.density = density
+        camera = document.camera(name)
+        blades = _ground(document, camera, "geometry", (480, 270))
+        volume = _ground(document, camera, "volume", (480, 270))
+        rows = (blades > 0.02) & (volume > 0.02) & (blades < 0.95)
+        ratio = np.exp(np.log(volume[rows] / blades[rows]).mean()) if rows.any() else np.nan
+        row[f"volume_over_blades_{density:g}"] = float(ratio)
+    return row
 
 
 def _hand_over(scene: str, name: str) -> dict:
     import numpy as np
 
-    import render.ground as ground_module
     from app.quality import shifted
     from app.scenes import get_scene
     from core.quality import technique_regions
     from render.grass_type import technique_colors
     from render.headless import HeadlessRenderer
-    from render.shaders import load_program
 
     size = (480, 270)
     document = get_scene(scene).document()
@@ -89,26 +134,13 @@ def _hand_over(scene: str, name: str) -> dict:
         found = technique_regions(frames[1].astype(np.uint8), techniques, technique_colors())
         return dark, found["geometry"].mean(axis=1), found["volume"].mean(axis=1)
 
-    def ground(mode: str, cam):
-        """Per image row, the share of the ground it shows: the ground drawn white and then
-        black (shadows off), the difference over white."""
-        document.light = dataclasses.replace(document.light, blade_shadows=False)
-        frames = []
-        for level in (1.0, 0.0):
-            ground_module.load_program = _ground_loader(level)
-            try:
-                with HeadlessRenderer(document, mode=mode) as renderer:
-                    frames.append(renderer.render(cam, size, measure=False)[0].astype(float))
-            finally:
-                ground_module.load_program = load_program
-        return ((frames[0] - frames[1]) / 255.0).mean(axis=(1, 2))
-
     lod, blades, volume = rows("lod", camera, regions=True)
     first = int(np.flatnonzero(blades > 0.2)[0])  # the hand-over: 30 rows either side
     band = np.arange(max(first - 30, 0), min(first + 30, size[1]))
     geometry = rows("geometry", camera)
     # the LOD frame's rows as if each showed as much ground as the all-geometry frame's
-    lod_ground, geometry_ground = ground("lod", camera), ground("geometry", camera)
+    lod_ground = _ground(document, camera, "lod", size)
+    geometry_ground = _ground(document, camera, "geometry", size)
     same_ground = lod * np.where(
         lod_ground > 0.01, geometry_ground / np.maximum(lod_ground, 0.01), 1.0
     )
