@@ -29,7 +29,7 @@ def save_image(w, path: str, scale: int = 1) -> bool:
     from PIL import Image
 
     size = (w.viewport.width() * scale, w.viewport.height() * scale)
-    limit = w.viewport.max_image_size
+    limit = w.viewport.image_size_limit()
     if max(size) > limit:
         QMessageBox.warning(
             w, "Sward", f"{size[0]} × {size[1]} is larger than this GPU draws ({limit})"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Creates the virtual environment and installs Sward into it with the extras named (default:
-# its test tools). The wheels go in through uv, which installs them in a quarter of pip's time;
-# pip does it where uv cannot be had.
+# its test tools). The wheels go in through uv, several times faster than pip; pip does it where
+# uv cannot be had.
 set -euo pipefail
 venv=${1:-.venv}
 extras=${2:-test}

@@ -165,10 +165,9 @@ class GrassViewport(QWidget):
             self.status_changed.emit("")
         self.update()
 
-    @property
-    def max_image_size(self) -> int:
-        """The largest side the full-quality renderer draws; a renderer that has not said it
-        yet (just started, or started again) is waited for, handling the window's events."""
+    def image_size_limit(self) -> int:
+        """The largest side the full-quality renderer draws, waiting (the window's events
+        handled) for a renderer that has not said it yet: just started, or started again."""
         if self.renderer.max_image_size <= 0:
             wait_until(lambda: self.renderer.max_image_size > 0, IMAGE_TIMEOUT_S)
         return self.renderer.max_image_size

@@ -108,8 +108,8 @@ def test_a_taller_types_volume_lets_the_shorter_grass_beneath_show(headless):
         soil_color=black, fog_distance=1e6,
     )  # fmt: skip
     camera = doc.camera("default")
-    # the grass beyond 25 m shows nowhere in the clump: it cost the all-geometry frame two
-    # thirds of its time
+    # the grass beyond 25 m shows nowhere in the clump, and drawn as blades it is most of
+    # the all-geometry frame's work
     camera.far = 25.0
     cover = {}
     for mode in ("geometry", "lod"):
