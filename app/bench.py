@@ -25,6 +25,7 @@ SUITES = (
     "wind",
     "segments",
     "shadows",
+    "cover",
 )
 MODULES = {"techniques": "representations"}
 

@@ -62,7 +62,7 @@ def run() -> list[dict]:
     )
 
 
-def _ground(document, camera, mode: str, size: tuple[int, int]):
+def ground_rows(document, camera, mode: str, size: tuple[int, int]):
     """Per image row, the share of the ground it shows: the ground drawn white and then black
     (shadows off), the difference over white."""
     import numpy as np
@@ -87,20 +87,15 @@ def _cover(scene: str, name: str) -> dict:
     """The volume alone against the blades alone: per density, the geometric mean over the
     rows where both show some ground and the blades not all of it of the ratio of the ground
     each lets through."""
-    import numpy as np
-
     from app.scenes import get_scene
+    from benchmarks.cover import volume_over_blades
 
     row: dict = {"name": f"{scene}_{name}_cover"}
     for density in (0.3, 0.6, 1.0):
         document = get_scene(scene).document()
         document.density = density
-        camera = document.camera(name)
-        blades = _ground(document, camera, "geometry", (480, 270))
-        volume = _ground(document, camera, "volume", (480, 270))
-        rows = (blades > 0.02) & (volume > 0.02) & (blades < 0.95)
-        ratio = np.exp(np.log(volume[rows] / blades[rows]).mean()) if rows.any() else np.nan
-        row[f"volume_over_blades_{density:g}"] = float(ratio)
+        ratio = volume_over_blades(document, document.camera(name), (480, 270))
+        row[f"volume_over_blades_{density:g}"] = ratio
     return row
 
 
@@ -139,8 +134,8 @@ def _hand_over(scene: str, name: str) -> dict:
     band = np.arange(max(first - 30, 0), min(first + 30, size[1]))
     geometry = rows("geometry", camera)
     # the LOD frame's rows as if each showed as much ground as the all-geometry frame's
-    lod_ground = _ground(document, camera, "lod", size)
-    geometry_ground = _ground(document, camera, "geometry", size)
+    lod_ground = ground_rows(document, camera, "lod", size)
+    geometry_ground = ground_rows(document, camera, "geometry", size)
     same_ground = lod * np.where(
         lod_ground > 0.01, geometry_ground / np.maximum(lod_ground, 0.01), 1.0
     )
