@@ -26,6 +26,7 @@ SUITES = (
     "segments",
     "shadows",
     "cover",
+    "heights",
 )
 MODULES = {"techniques": "representations"}
 
