@@ -63,21 +63,9 @@ def met_rows(document, camera, mode: str):
     (0 where no grass shows)."""
     import numpy as np
 
-    import render.ground as ground_module
-    from benchmarks.shadows import _ground_loader
-    from render.headless import HeadlessRenderer
-    from render.shaders import load_program
+    from benchmarks.shadows import ground_frames
 
-    frames = []
-    for level in (1.0, 0.0):  # the ground white, then black
-        ground_module.load_program = _ground_loader(level)
-        try:
-            with HeadlessRenderer(document, mode=mode) as renderer:
-                image = renderer.render(camera, SIZE, measure=False)[0][..., :3]
-                frames.append(image.astype(float) / 255.0)
-        finally:
-            ground_module.load_program = load_program
-    white, black = frames
+    white, black = (frame[..., :3] / 255.0 for frame in ground_frames(document, camera, mode, SIZE))
     ground = (white - black).mean(axis=-1)  # how much of each pixel is ground
     sky = white.max(axis=-1) == 0.0
     grass = np.where(sky, 0.0, np.clip(1.0 - ground, 0.0, 1.0))

@@ -62,11 +62,9 @@ def run() -> list[dict]:
     )
 
 
-def ground_rows(document, camera, mode: str, size: tuple[int, int]):
-    """Per image row, the share of the ground it shows: the ground drawn white and then black
-    (shadows off), the difference over white."""
-    import numpy as np
-
+def ground_frames(document, camera, mode: str, size: tuple[int, int]):
+    """The frame with the ground drawn white and with it drawn black (shadows off), RGBA as
+    floats 0 … 255: their difference is how much of each pixel is ground."""
     import render.ground as ground_module
     from render.headless import HeadlessRenderer
     from render.shaders import load_program
@@ -80,7 +78,16 @@ def ground_rows(document, camera, mode: str, size: tuple[int, int]):
                 frames.append(renderer.render(camera, size, measure=False)[0].astype(float))
         finally:
             ground_module.load_program = load_program
-    return np.asarray(((frames[0] - frames[1]) / 255.0).mean(axis=(1, 2)))
+    return frames[0], frames[1]
+
+
+def ground_rows(document, camera, mode: str, size: tuple[int, int]):
+    """Per image row, the share of the ground it shows (ground_frames' difference over
+    white)."""
+    import numpy as np
+
+    white, black = ground_frames(document, camera, mode, size)
+    return np.asarray(((white - black) / 255.0).mean(axis=(1, 2)))
 
 
 def _cover(scene: str, name: str) -> dict:
