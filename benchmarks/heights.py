@@ -65,7 +65,7 @@ def met_rows(document, camera, mode: str):
 
     from benchmarks.shadows import ground_frames
 
-    white, black = (frame[..., :3] / 255.0 for frame in ground_frames(document, camera, mode, SIZE))
+    white, black = (frame / 255.0 for frame in ground_frames(document, camera, mode, SIZE))
     ground = (white - black).mean(axis=-1)  # how much of each pixel is ground
     sky = white.max(axis=-1) == 0.0
     grass = np.where(sky, 0.0, np.clip(1.0 - ground, 0.0, 1.0))

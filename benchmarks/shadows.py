@@ -63,7 +63,7 @@ def run() -> list[dict]:
 
 
 def ground_frames(document, camera, mode: str, size: tuple[int, int]):
-    """The frame with the ground drawn white and with it drawn black (shadows off), RGBA as
+    """The frame with the ground drawn white and with it drawn black (shadows off), RGB as
     floats 0 … 255: their difference is how much of each pixel is ground."""
     import render.ground as ground_module
     from render.headless import HeadlessRenderer
