@@ -55,11 +55,10 @@ test: test-deps $(EXTRAS) $(VALIDATOR)
 	# The window tests (marker gui, under Xvfb) run in a process of their own; the window
 	# draws no GL (its frames come from render processes), the other tests use standalone EGL.
 	# Two workers (pytest-xdist): much of a GL test is Python, process starts and llvmpipe's
-	# single-threaded shader compiles (on 2 cores: 340 s -> 234 s; the window tests, whose
-	# render processes keep both cores busy, gain little and run alone).
+	# single-threaded shader compiles, and a window test waits on its render processes.
 	# The tune tests measure what settings cost and run one at a time (their xdist group).
 	$(PY) -m pytest -n 2 --dist loadgroup -m "not gui" --ignore=tests/core --ignore=tests/app
-	QT_QPA_PLATFORM=xcb $(PY) -m pytest -m gui
+	QT_QPA_PLATFORM=xcb $(PY) -m pytest -n 2 -m gui
 
 bench: $(STAMP)
 	$(VENV)/bin/sward bench --out benchmarks/results.json

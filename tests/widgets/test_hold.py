@@ -8,6 +8,10 @@ pytestmark = pytest.mark.gui
 
 
 def test_holding_a_shorter_frame_slides_every_zone_in_and_off_again(window, qtbot, monkeypatch):
+    # a target far below any frame drives the factor to its floor, where it stays: the zones
+    # settle within three frames however busy the machine is (a target the frames come near
+    # keeps the factor moving with the machine's load, and the window never settles)
+    monkeypatch.setattr("core.hold.FACTOR_LIMITS", (0.7, 4.0))
     vp = window.viewport
     wait_full(window)
     vp.request_frame(draft=False)  # a frame after the first (which compiles and converts)
@@ -17,12 +21,12 @@ def test_holding_a_shorter_frame_slides_every_zone_in_and_off_again(window, qtbo
 
     def ask_number(title, label, value, low, high, unit=""):
         asked.append(value)
-        return before.t_a_ms * 0.3  # a third of today's frame
+        return before.t_a_ms * 0.01
 
     monkeypatch.setattr(window.dialogs, "ask_number", ask_number)
     window.hold_action.trigger()
     assert window.hold_action.isChecked() and asked == [pytest.approx(before.t_a_ms)]
-    qtbot.waitUntil(lambda: vp.zone_scale.factor < 0.8, timeout=60000)
+    qtbot.waitUntil(lambda: vp.zone_scale.factor == 0.7, timeout=60000)
     wait_full(window)
     assert vp.renderer_facts()["lod_scale"] == pytest.approx(vp.zone_scale.factor)
     assert vp.renderer_facts(role="draft")["lod_scale"] == pytest.approx(vp.zone_scale.factor)
