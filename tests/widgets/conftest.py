@@ -51,7 +51,13 @@ def pytest_unconfigure(config):
 
 @pytest.fixture(scope="session")
 def kept_sums(tmp_path_factory):
-    return tmp_path_factory.mktemp("derived")
+    """One folder for the run, shared by xdist's workers as a user's windows share theirs."""
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent  # each worker's base folder lies in the run's
+    folder = root / "window-sums"
+    folder.mkdir(exist_ok=True)
+    return folder
 
 
 @pytest.fixture(autouse=True)
