@@ -36,6 +36,7 @@ def main() -> None:
     mirror_bits(np.zeros((1, 2)))
     # the patch conversion's mip chains (hills above compiled the noise)
     build_mips_stack(np.zeros((1, 4, 4, 4), np.float32))
+    build_mips_stack(np.zeros((1, 4, 4, 4), np.float32), upper_first=True)  # the slices' colour
     weighted_chain(np.zeros((1, 4, 4, 4), np.float32), np.zeros((1, 4, 4), np.float32), 3)
     canonical_data(
         SliceLayers(
