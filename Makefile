@@ -3,6 +3,11 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.sward-installed
 
+# Python keeps the modules it compiled (__pycache__) even where the environment says not to:
+# without them every process compiles its ~650 modules from source again (2-3 s a process),
+# and the designer and the tests start many (render processes, command-line runs).
+unexport PYTHONDONTWRITEBYTECODE
+
 .PHONY: run test lint bench setup system-deps test-deps clean
 
 $(STAMP): pyproject.toml
