@@ -14,24 +14,22 @@ import os
 import numpy as np
 import pytest
 
-# the light sums kept between runs (render/derived_cache.py) stay out of the tests' own renders:
-# each test builds what it checks; tests of the cache name a folder of their own, and `sward` run
-# as a process keeps its sums as a user's runs do (cli_cache below)
-os.environ.setdefault("SWARD_CACHE", "off")
-CLI_CACHE_ENV = "SWARD_TEST_CLI_CACHE"
-
 
 @pytest.fixture(scope="session", autouse=True)
-def cli_cache(tmp_path_factory):
-    """The folder where `sward` run as a process by the tests (tests/test_cli.py `sward`) keeps
-    its light sums: one for the run, shared by xdist's workers (the cache's claim files let two
-    processes build and read it at once), as a user's runs share theirs."""
+def kept_sums(tmp_path_factory):
+    """The folder where the run keeps the light sums it derives (render/derived_cache.py): one
+    for the run, empty at its start, shared by xdist's workers (the cache's claim files let two
+    processes build and read it at once), by `sward` run as a process (tests/test_cli.py
+    `sward`) and by the windows' render processes, as a user's runs and windows share theirs.
+    A sum read from it is the one a build gives (its name carries the content's digest and
+    core's code); the tests of the cache and of when sums are built name folders of their
+    own or turn it off."""
     root = tmp_path_factory.getbasetemp()
     if os.environ.get("PYTEST_XDIST_WORKER"):
         root = root.parent  # each worker's base folder lies in the run's
-    folder = root / "cli-sums"
+    folder = root / "sums"
     folder.mkdir(exist_ok=True)
-    os.environ[CLI_CACHE_ENV] = str(folder)
+    os.environ["SWARD_CACHE"] = str(folder)
     return folder
 
 

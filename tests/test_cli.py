@@ -11,17 +11,17 @@ from PIL import Image
 
 from app.scenes import get_scene
 from tests import cli_process
-from tests.conftest import CLI_CACHE_ENV, coverage
+from tests.conftest import coverage
 from tests.project_files import project_parts, write_project
 
 
 def sward(*args, env=None, fresh=False):
     """`sward ARGS` as a user runs it, keeping its light sums as a user's runs do (between the
-    test run's processes: tests/conftest.py cli_cache) unless `env` names SWARD_CACHE. The
+    test run's processes: tests/conftest.py kept_sums) unless `env` names SWARD_CACHE. The
     process is forked from one that has done the imports every run repeats
     (tests/cli_process.py); `fresh` starts a new interpreter, `python -m app.cli ARGS`."""
     if env is None:
-        env = {**os.environ, "SWARD_CACHE": os.environ.get(CLI_CACHE_ENV, "off")}
+        env = dict(os.environ)
     if not fresh:
         return cli_process.run(args, env, timeout=240)
     return subprocess.run(

@@ -4,10 +4,17 @@ never saw the old patch draws. A draft's blades have fewer segments and look the
 size."""
 
 import numpy as np
+import pytest
 
 from app.scenes import get_scene
 
 SIZE = (240, 160)
+
+
+@pytest.fixture(autouse=True)
+def sums_built_here(monkeypatch):
+    """These tests watch when a renderer builds its sums: none read from the run's folder."""
+    monkeypatch.setenv("SWARD_CACHE", "off")
 
 
 def test_a_blade_edits_draft_keeps_the_sums_and_its_full_frame_builds_them(headless, monkeypatch):

@@ -49,25 +49,6 @@ def pytest_unconfigure(config):
     os._exit(_exit_status[0])
 
 
-@pytest.fixture(scope="session")
-def kept_sums(tmp_path_factory):
-    """One folder for the run, shared by xdist's workers as a user's windows share theirs."""
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):
-        root = root.parent  # each worker's base folder lies in the run's
-    folder = root / "window-sums"
-    folder.mkdir(exist_ok=True)
-    return folder
-
-
-@pytest.fixture(autouse=True)
-def sums_kept_between_windows(kept_sums, monkeypatch):
-    """The designer as a person runs it: the light sums its render processes derive are kept
-    between windows (render/derived_cache.py; tests/conftest.py turns the cache off for the
-    other tests), so each window after the first that needs a sum finds it made."""
-    monkeypatch.setenv("SWARD_CACHE", str(kept_sums))
-
-
 @pytest.fixture(autouse=True)
 def no_leaked_windows(request):
     """A test leaves no window of its own open (napari / ndv do the same): dialogs it opened
