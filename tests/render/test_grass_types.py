@@ -70,7 +70,7 @@ def test_far_away_a_taller_type_lets_the_grass_among_it_show_as_its_blades_do(he
     """Over another type's grass the image-based slice of the tall grass stops a ray by its
     share of the blades above and among the shorter ones (core/canopy.py: Canopy.over), not by
     its top view's coverage: the tall grass's half gains about as much yellow over the same
-    half without it as the blades give it (geometry 6.3, the image-based 3.5 before, 4.6 now)."""
+    half without it as the blades give it."""
     one = dataclasses.replace(BASE, params=BASE.params.replace(blade_count=500), mirror_seed=None)
     two = dataclasses.replace(one, grass=(MEADOW_TALL,))
     camera = one.document().camera("default")

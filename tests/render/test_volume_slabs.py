@@ -79,7 +79,6 @@ def test_rays_up_the_landscapes_hill_count_all_the_grass_they_cross(headless):
     # Rays rising up the hill fall into its grass as the hill rises faster: counted by their
     # direction alone they never met the horizontal layer, nor were runs too short for a
     # crossing counted, and single pixels along the cuboids' walls showed the soil whole
-    # (106 of the hill's, rows 50-150, before)
     moved = to_float(soil) - to_float(shaded)
     share = np.clip(moved[..., 2] - moved[..., 1], 0.0, 1.0)
     assert int((share[50:150] > 0.8).sum()) <= 5
