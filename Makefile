@@ -4,7 +4,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.sward-installed
 
 # Python keeps the modules it compiled (__pycache__) even where the environment says not to:
-# without them every process compiles its ~650 modules from source again (2-3 s a process),
+# without them every process compiles its modules from source again, seconds of each start,
 # and the designer and the tests start many (render processes, command-line runs).
 unexport PYTHONDONTWRITEBYTECODE
 
